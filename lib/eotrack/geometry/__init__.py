@@ -1,0 +1,1 @@
+"""Geometry: rotations, pinhole cameras, intrinsics, distortion, epipolar geometry, triangulation."""

@@ -1,0 +1,1 @@
+"""Pose: PnP, DLT, RANSAC pose, Fisher information / CRLB of a pose, feature selection."""

@@ -1,0 +1,1 @@
+"""Tracking: Kalman filters, data association and track initiation."""
