@@ -1,1 +1,10 @@
-"""Geometry: rotations, pinhole cameras, intrinsics, distortion, epipolar geometry, triangulation."""
+"""Geometry: rotations, pinhole cameras, intrinsics, distortion, epipolar geometry, triangulation.
+
+Each submodule lists its public names in ``__all__``; they are re-exported here.
+"""
+
+from __future__ import annotations
+
+from eotrack._reexport import reexport
+
+__all__ = reexport(__name__, __path__, globals())

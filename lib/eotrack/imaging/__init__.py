@@ -1,10 +1,10 @@
 """Imaging: star-field and target rendering, backgrounds, thresholds, detection, centroids.
 
-Submodules are small and named for what they do; this package re-exports their public names.
+Each submodule lists its public names in ``__all__``; they are re-exported here.
 """
 
 from __future__ import annotations
 
-from .psf import render_gaussian_spots
+from eotrack._reexport import reexport
 
-__all__ = ["render_gaussian_spots"]
+__all__ = reexport(__name__, __path__, globals())

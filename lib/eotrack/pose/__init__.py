@@ -1,1 +1,10 @@
-"""Pose: PnP, DLT, RANSAC pose, Fisher information / CRLB of a pose, feature selection."""
+"""Pose: PnP, DLT, RANSAC pose, Fisher information / CRLB of a pose, feature selection.
+
+Each submodule lists its public names in ``__all__``; they are re-exported here.
+"""
+
+from __future__ import annotations
+
+from eotrack._reexport import reexport
+
+__all__ = reexport(__name__, __path__, globals())
