@@ -1,0 +1,237 @@
+"""Gating helpers shared by the logic and Hough initiators.
+
+* :func:`check_velocity_gate` — validate a speed gate ``v_min <= v <= v_max`` (pixels per second).
+* :func:`velocity_gated_pairs` — every pair (detection of an earlier frame, detection of a later
+  frame) whose apparent speed lies in the gate; frames need not be consecutive nor evenly spaced,
+  the speed is ``|Δxy| / Δt`` with the real time difference.
+* :func:`angle_at_middle_deg` — the angle at the middle point of three points (the
+  angle-constrained logic rejects "V-shaped" triples whose angle is ≤ 90°).
+* :func:`fit_constant_velocity` — least-squares straight-line constant-velocity fit ``xy(t)``.
+* :class:`TrackHandOff` — what happens to a track once it is confirmed: it is handed to tracking,
+  which claims its detections in later frames (nearest neighbour inside a gate around the
+  constant-velocity prediction) so that they no longer feed initiation. All initiators of this
+  package use it, so none of them confirms the same object twice.
+* :func:`canonical_order` — a permutation that sorts a frame's detections by (x, y); initiators
+  work in that order so their result does not depend on the order of detections in a frame.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from eotrack.validation import as_finite_array, check_positive
+
+from .base import Frame, Track
+
+__all__ = [
+    "TrackHandOff",
+    "angle_at_middle_deg",
+    "canonical_order",
+    "check_velocity_gate",
+    "fit_constant_velocity",
+    "velocity_gated_pairs",
+]
+
+
+def check_velocity_gate(v_min: float, v_max: float) -> tuple[float, float]:
+    """Check a speed gate ``0 <= v_min < v_max`` (pixels per second) and return it as floats.
+
+    Raises
+    ------
+    ValueError
+        If either bound is negative or not finite, or the gate is inverted or empty.
+    """
+    lo = check_positive(v_min, "v_min", allow_zero=True)
+    hi = check_positive(v_max, "v_max")
+    if not lo < hi:
+        raise ValueError(f"velocity gate must satisfy v_min < v_max, got v_min={lo}, v_max={hi}")
+    return lo, hi
+
+
+def velocity_gated_pairs(xy_a: np.ndarray, t_a: float, xy_b: np.ndarray, t_b: float,
+                         v_min: float, v_max: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """All pairs ``(a, b)`` whose apparent speed ``|xy_b − xy_a| / (t_b − t_a)`` is in the gate.
+
+    Parameters
+    ----------
+    xy_a, xy_b
+        Detections ``(n_a, 2)`` at time ``t_a`` and ``(n_b, 2)`` at time ``t_b`` (pixels).
+    t_a, t_b
+        Times (s), ``t_b > t_a``.
+    v_min, v_max
+        Speed gate (pixels per second), inclusive.
+
+    Returns
+    -------
+    ia, ib : numpy.ndarray
+        Indices of the gated pairs into ``xy_a`` and ``xy_b`` (row-major order over ``(a, b)``).
+    velocity : numpy.ndarray
+        ``(n_pairs, 2)`` pair velocities (pixels per second).
+    """
+    a = as_finite_array(xy_a, "xy_a", ndim=2)
+    b = as_finite_array(xy_b, "xy_b", ndim=2)
+    if a.shape[1:] != (2,) or b.shape[1:] != (2,):
+        raise ValueError(f"xy_a and xy_b must have shape (n, 2), got {a.shape} and {b.shape}")
+    dt = float(t_b) - float(t_a)
+    if not np.isfinite(dt) or dt <= 0:
+        raise ValueError(f"t_b must be later than t_a, got t_a={t_a}, t_b={t_b}")
+    lo, hi = check_velocity_gate(v_min, v_max)
+    d = (b[None, :, :] - a[:, None, :]) / dt
+    v2 = np.einsum("abk,abk->ab", d, d)
+    ia, ib = np.nonzero((v2 >= lo * lo) & (v2 <= hi * hi))
+    return ia, ib, d[ia, ib]
+
+
+def angle_at_middle_deg(p0: np.ndarray, p1: np.ndarray, p2: np.ndarray) -> np.ndarray:
+    """Angle (degrees, in [0, 180]) at ``p1`` of the triangle ``p0 – p1 – p2``; rows broadcast.
+
+    A straight uniform motion gives 180°; a "V" (the third point doubling back) gives < 90°.
+    Coincident points give 0° (treated as the worst case).
+    """
+    a = as_finite_array(p0, "p0") - as_finite_array(p1, "p1")
+    b = as_finite_array(p2, "p2") - as_finite_array(p1, "p1")
+    if a.shape[-1] != 2 or b.shape[-1] != 2:
+        raise ValueError("p0, p1, p2 must have a last axis of length 2 (x, y)")
+    na = np.hypot(a[..., 0], a[..., 1])
+    nb = np.hypot(b[..., 0], b[..., 1])
+    dot = a[..., 0] * b[..., 0] + a[..., 1] * b[..., 1]
+    with np.errstate(invalid="ignore", divide="ignore"):
+        c = np.where((na > 0) & (nb > 0), dot / (na * nb), 1.0)
+    return np.degrees(np.arccos(np.clip(c, -1.0, 1.0)))
+
+
+def fit_constant_velocity(t_s: np.ndarray, xy: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Least-squares constant-velocity fit ``xy(t) = p + v (t − t̄)``.
+
+    Parameters
+    ----------
+    t_s
+        Times ``(k,)`` (s), at least two distinct values.
+    xy
+        Positions ``(k, 2)``.
+
+    Returns
+    -------
+    p_mean, v : numpy.ndarray
+        Position at the mean time ``t̄`` and velocity (pixels per second); ``p_mean`` is returned
+        together with ``t̄`` implicitly — predict with :math:`p + v (t − \\bar t)`.
+    """
+    t = as_finite_array(t_s, "t_s", ndim=1)
+    p = as_finite_array(xy, "xy", shape=(None, 2))
+    if len(t) != len(p):
+        raise ValueError(f"t_s and xy must have the same length, got {len(t)} and {len(p)}")
+    tc = t - t.mean()
+    den = float(tc @ tc)
+    if den <= 0:
+        raise ValueError("t_s needs at least two distinct times for a velocity fit")
+    pm = p.mean(axis=0)
+    v = tc @ (p - pm) / den
+    return pm, v
+
+
+def canonical_order(xy: np.ndarray) -> np.ndarray:
+    """Permutation sorting detections by x, then y (ties keep input order)."""
+    xy = np.asarray(xy, float)
+    if len(xy) == 0:
+        return np.zeros(0, dtype=int)
+    return np.lexsort((xy[:, 1], xy[:, 0]))
+
+
+@dataclass
+class _Kept:
+    hits: list[tuple[int, int]]
+    confirmed_at: int
+    info: dict
+    t: list[float] = field(default_factory=list)
+    xy: list[np.ndarray] = field(default_factory=list)
+
+
+class TrackHandOff:
+    """Confirmed tracks handed to tracking; they claim their detections in later frames.
+
+    Each frame, every confirmed track predicts its position with a least-squares
+    constant-velocity fit of its (last four) hits; detections within ``gate_px`` of a
+    prediction are assigned greedily by increasing distance (ties broken by detection position),
+    each detection to at most one track. Claimed detections are appended to the track and are
+    no longer candidates for initiation.
+
+    Parameters
+    ----------
+    gate_px
+        Radius of the maintenance gate (pixels, > 0).
+    """
+
+    def __init__(self, gate_px: float) -> None:
+        self.gate_px = check_positive(gate_px, "gate_px")
+        self._tracks: list[_Kept] = []
+
+    def __len__(self) -> int:
+        return len(self._tracks)
+
+    def confirm(self, hits: Sequence[tuple[int, int]], confirmed_at: int,
+                frames: Sequence[Frame], info: dict | None = None) -> None:
+        """Register a newly confirmed track (``hits`` in any order; stored in frame order)."""
+        hits = sorted((int(f), int(d)) for f, d in hits)
+        kept = _Kept(hits=hits, confirmed_at=int(confirmed_at), info=dict(info or {}))
+        for f, d in hits:
+            kept.t.append(frames[f].time_s)
+            kept.xy.append(np.asarray(frames[f].xy[d], float))
+        self._tracks.append(kept)
+
+    def claim(self, frame_index: int, time_s: float, xy: np.ndarray,
+              available: np.ndarray) -> np.ndarray:
+        """Assign detections of one frame to the confirmed tracks.
+
+        Parameters
+        ----------
+        frame_index, time_s
+            The frame.
+        xy
+            Its detections ``(n, 2)``.
+        available
+            Boolean mask ``(n,)`` of detections still free; updated in place.
+
+        Returns
+        -------
+        numpy.ndarray
+            Boolean mask of the detections claimed in this call.
+        """
+        claimed = np.zeros(len(xy), dtype=bool)
+        if not self._tracks or len(xy) == 0:
+            return claimed
+        pred = np.empty((len(self._tracks), 2))
+        for i, tr in enumerate(self._tracks):
+            t = np.asarray(tr.t[-4:])
+            p = np.asarray(tr.xy[-4:])
+            pm, v = fit_constant_velocity(t, p)
+            pred[i] = pm + v * (time_s - t.mean())
+        d = np.hypot(pred[:, None, 0] - xy[None, :, 0], pred[:, None, 1] - xy[None, :, 1])
+        d[:, ~available] = np.inf
+        ti, di = np.nonzero(d <= self.gate_px)
+        if len(ti) == 0:
+            return claimed
+        order = np.lexsort((xy[di, 1], xy[di, 0], d[ti, di]))
+        used_t = np.zeros(len(self._tracks), dtype=bool)
+        for k in order:
+            a, b = ti[k], di[k]
+            if used_t[a] or claimed[b]:
+                continue
+            used_t[a] = True
+            claimed[b] = True
+            tr = self._tracks[a]
+            tr.hits.append((int(frame_index), int(b)))
+            tr.t.append(float(time_s))
+            tr.xy.append(np.asarray(xy[b], float))
+        available &= ~claimed
+        return claimed
+
+    def tracks(self, perms: Sequence[np.ndarray] | None = None) -> list[Track]:
+        """The confirmed tracks; ``perms[f]`` maps working indices back to input indices."""
+        out = []
+        for tr in self._tracks:
+            hits = [(f, int(perms[f][d]) if perms is not None else d) for f, d in tr.hits]
+            out.append(Track(hits=hits, confirmed_at=tr.confirmed_at, info=dict(tr.info)))
+        return out

@@ -1,0 +1,501 @@
+"""Modified Hough track initiation of Xu & Wang (Acta Astronomica Sinica 57(2):211, 2016).
+
+Over a short arc a space object moves on a straight line at constant speed on the image, so its
+detections lie on one line of the (t, x, y) space. The method votes in a four-parameter space
+``(ρ, θ, v, s)``:
+
+* ``ρ = x cos θ + y sin θ`` (eq. 1) — the image line, θ ∈ [0°, 180°);
+* ``v`` — the apparent speed (pixels per second), ``s`` ∈ {−, +} the direction along the line
+  (``+`` = along ``u(θ) = (sin θ, −cos θ)``, i.e. increasing image x; for θ = 0, decreasing y).
+
+At frame ``k`` every candidate of ``O_k`` is paired with every candidate of the two previous
+frames ``j = k−1`` and ``i = k−2`` (previous in the sequence — frames need not be consecutive
+nor evenly spaced: the speed uses the real time difference). Pairs inside the velocity gate
+``v_min ≤ v ≤ v_max`` give a cell ``(ρ_n, θ_n, v_n, s)`` of sizes ``δρ, δθ, δv``; the cells form
+the set ``S_k = S_kj ∪ S_ki`` and the pairs are recorded in the point-set matrix ``Q``.
+
+Votes (reading adopted here, see the notebook's errata): ``P(t)`` is the number of distinct
+frames of the last ``m`` whose detections are in ``Q(t)``. A frame therefore adds at most one
+vote per cell however many of its points fall in it (the paper's set-based ``P(t) += 1``), and
+the first pair of a cell counts both its frames. A track is confirmed by the ``(m−1)/m`` rule:
+``P(t) ≥ m − 1``, or, for a cell of ``S_k`` that falls short, together with a 6-neighbour ``t′``
+(±1 cell in ρ, θ or v, same s) that the least-squares line through ``Q(t)`` is close to (within
+one cell in ρ and θ), when the two cells together hold ``m − 1`` frames. Cells are examined in
+decreasing ``P``; a confirmed track clears its cells and is handed to tracking (its detections
+leave every other cell and later frames' candidate sets). Votes older than ``m`` frames expire.
+
+Implementation: the vote matrix is a dense ``uint32`` array holding, per cell, a bit mask of the
+frames that voted (frame index mod 32), so ``P(t)`` is a popcount of the mask restricted to the
+window; the pairs of the last ``m`` frames are kept in arrays for ``Q``. All per-pair work is
+vectorised.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from eotrack.validation import check_int, check_positive
+
+from .base import Frame, Track, validate_frames
+from .gating import TrackHandOff, canonical_order, check_velocity_gate, fit_constant_velocity
+
+__all__ = ["ModifiedHoughInitiator", "ModifiedHoughRun", "line_through_points"]
+
+_BITS = 32
+_MAX_M = 16
+
+
+def line_through_points(xy: np.ndarray) -> tuple[float, float]:
+    """Total-least-squares line ``ρ = x cos θ + y sin θ`` through points, θ in [0, π).
+
+    Parameters
+    ----------
+    xy
+        ``(k, 2)`` points, ``k ≥ 2`` and not all equal.
+
+    Returns
+    -------
+    rho, theta : float
+        Line parameters (pixels, radians).
+    """
+    p = np.asarray(xy, float)
+    if p.ndim != 2 or p.shape[1] != 2 or len(p) < 2:
+        raise ValueError(f"xy must have shape (k, 2) with k >= 2, got {p.shape}")
+    c = p.mean(axis=0)
+    cov = np.cov((p - c).T, bias=True)
+    w, vec = np.linalg.eigh(cov)
+    if w[-1] <= 0:
+        raise ValueError("xy points all coincide: no line through them")
+    normal = vec[:, 0]
+    theta = math.atan2(normal[1], normal[0]) % math.pi
+    rho = c[0] * math.cos(theta) + c[1] * math.sin(theta)
+    return float(rho), float(theta)
+
+
+@dataclass
+class ModifiedHoughRun:
+    """Result of :meth:`ModifiedHoughInitiator.run`: the tracks and a per-frame log.
+
+    ``log`` has one dict per frame with ``frame``, ``time_s``, ``candidates`` (detections left
+    for initiation after hand-off), ``pairs`` (velocity-gated pairs), ``created`` (cells that
+    received their first vote), ``destroyed`` (cells whose votes all expired or were purged,
+    without being confirmed), ``confirmed`` (tracks confirmed) and ``tentative`` (cells holding
+    votes after the frame).
+    """
+
+    tracks: list[Track]
+    log: list[dict] = field(default_factory=list)
+
+
+@dataclass(frozen=True)
+class ModifiedHoughInitiator:
+    """Xu & Wang's modified Hough initiator; defaults are the paper's settings.
+
+    Parameters
+    ----------
+    d_rho
+        Cell size δρ (pixels).
+    d_theta_deg
+        Cell size δθ (degrees).
+    d_v
+        Cell size δv (pixels per second).
+    v_min, v_max
+        Velocity gate (pixels per second).
+    m
+        Window of the ``(m−1)/m`` confirmation rule (``2 ≤ m ≤ 16``); ``m = 4`` is 3/4.
+    handoff_gate_px
+        Gate of the tracking hand-off that claims a confirmed track's later detections.
+    max_cells
+        Refuse parameter spaces larger than this (memory guard).
+    """
+
+    d_rho: float = 5.0
+    d_theta_deg: float = 5.0
+    d_v: float = 3.0
+    v_min: float = 10.0
+    v_max: float = 240.0
+    m: int = 4
+    handoff_gate_px: float = 5.0
+    max_cells: int = 50_000_000
+
+    def __post_init__(self) -> None:
+        check_positive(self.d_rho, "d_rho")
+        check_positive(self.d_theta_deg, "d_theta_deg")
+        if self.d_theta_deg > 180:
+            raise ValueError(f"d_theta_deg must be <= 180, got {self.d_theta_deg}")
+        check_positive(self.d_v, "d_v")
+        check_velocity_gate(self.v_min, self.v_max)
+        check_int(self.m, "m", min_value=2, max_value=_MAX_M)
+        check_positive(self.handoff_gate_px, "handoff_gate_px")
+        check_int(self.max_cells, "max_cells", min_value=1)
+
+    # ------------------------------------------------------------------ public
+    def initiate(self, frames: Sequence) -> list[Track]:
+        """Confirmed tracks from ``frames`` (a sequence of ``(time_s, xy)``)."""
+        return self.run(frames).tracks
+
+    def run(self, frames: Sequence, *, log: bool = False) -> ModifiedHoughRun:
+        """Process the frames in order; optionally log per-frame counts (Table 2 of the paper).
+
+        Parameters
+        ----------
+        frames
+            Sequence of ``(time_s, xy)`` in increasing time order.
+        log
+            Also record the per-frame log (costs a scan of the vote matrix per frame).
+        """
+        fr = validate_frames(frames)
+        perms = [canonical_order(f.xy) for f in fr]
+        xys = [f.xy[p] for f, p in zip(fr, perms)]
+        times = np.array([f.time_s for f in fr])
+        return _Engine(self, xys, times, fr, perms, log).run()
+
+    def cell_of(self, xy_a: np.ndarray, t_a: float, xy_b: np.ndarray,
+                t_b: float) -> tuple[float, float, float, int]:
+        """``(ρ, θ_deg, v, s)`` of the motion from ``xy_a`` at ``t_a`` to ``xy_b`` at ``t_b``."""
+        a = np.asarray(xy_a, float).reshape(1, 2)
+        b = np.asarray(xy_b, float).reshape(1, 2)
+        if not float(t_b) > float(t_a):
+            raise ValueError(f"t_b must be later than t_a, got {t_a} and {t_b}")
+        rho, theta, v, s = _pair_params(a, b, float(t_b) - float(t_a))
+        return float(rho[0]), float(np.degrees(theta[0])), float(v[0]), int(s[0])
+
+
+def _pair_params(a: np.ndarray, b: np.ndarray, dt: float | np.ndarray):
+    """ρ, θ (rad, [0, π)), speed and direction s (±1) of pairs a → b."""
+    dx = b[:, 0] - a[:, 0]
+    dy = b[:, 1] - a[:, 1]
+    theta = np.mod(np.arctan2(dy, dx) + np.pi / 2, np.pi)
+    c, s_ = np.cos(theta), np.sin(theta)
+    rho = b[:, 0] * c + b[:, 1] * s_
+    along = dx * s_ - dy * c  # Δ · u(θ), u = (sin θ, −cos θ)
+    sign = np.where(along >= 0, 1, -1)
+    v = np.hypot(dx, dy) / dt
+    return rho, theta, v, sign
+
+
+class _Engine:
+    """One run of the modified Hough over a frame sequence (internal)."""
+
+    def __init__(self, cfg: ModifiedHoughInitiator, xys, times, frames, perms, log: bool):
+        self.cfg = cfg
+        self.xys = xys
+        self.times = times
+        self.frames = frames
+        self.perms = perms
+        self.log_on = log
+        self.m = cfg.m
+        self.need = cfg.m - 1
+        self.d_theta = math.radians(cfg.d_theta_deg)
+        self.n_theta = max(1, math.ceil(180.0 / cfg.d_theta_deg - 1e-9))
+        self.v0 = math.floor(cfg.v_min / cfg.d_v)
+        self.n_v = math.floor(cfg.v_max / cfg.d_v) - self.v0 + 1
+        r_max = max((float(np.max(np.hypot(x[:, 0], x[:, 1]))) for x in xys if len(x)),
+                    default=0.0)
+        self.r_off = math.ceil(r_max / cfg.d_rho) + 2
+        self.n_rho = 2 * self.r_off + 1
+        n_cells = self.n_rho * self.n_theta * self.n_v * 2
+        if n_cells > cfg.max_cells:
+            raise ValueError(
+                f"the (ρ, θ, v, s) space would have {n_cells} cells (> max_cells="
+                f"{cfg.max_cells}); use larger cells d_rho/d_theta_deg/d_v or a narrower "
+                f"velocity gate, or shift the detections closer to the origin")
+        self.acc = np.zeros(n_cells, dtype=np.uint32)
+        self.available = [np.ones(len(x), dtype=bool) for x in xys]
+        self.fw = [Frame(float(t), x) for t, x in zip(times, xys)]
+        self.handoff = TrackHandOff(cfg.handoff_gate_px)
+        # stored pairs of the last m current frames: dict frame -> dict of arrays
+        self.pairs: dict[int, dict[str, np.ndarray]] = {}
+        self.log: list[dict] = []
+        self.tentative_prev = 0
+
+    # -- cell indexing -------------------------------------------------------
+    def _indices(self, rho, theta, v, s):
+        cfg = self.cfg
+        ir = np.floor(rho / cfg.d_rho).astype(np.int64) + self.r_off
+        it = np.minimum((theta / self.d_theta).astype(np.int64), self.n_theta - 1)
+        iv = np.floor(v / cfg.d_v).astype(np.int64) - self.v0
+        iv = np.clip(iv, 0, self.n_v - 1)
+        is_ = (s > 0).astype(np.int64)
+        return ir, it, iv, is_
+
+    def _key(self, ir, it, iv, is_):
+        return ((ir * self.n_theta + it) * self.n_v + iv) * 2 + is_
+
+    def _unkey(self, key):
+        is_ = key % 2
+        rest = key // 2
+        iv = rest % self.n_v
+        rest //= self.n_v
+        it = rest % self.n_theta
+        ir = rest // self.n_theta
+        return ir, it, iv, is_
+
+    def _centre(self, key):
+        ir, it, iv, is_ = self._unkey(int(key))
+        cfg = self.cfg
+        rho = (ir - self.r_off + 0.5) * cfg.d_rho
+        theta = min((it + 0.5) * self.d_theta, math.pi)
+        v = (iv + self.v0 + 0.5) * cfg.d_v
+        return rho, theta, v, (1 if is_ else -1)
+
+    def _neighbours(self, ir, it, iv, is_):
+        """The 6 face neighbours of cells (arrays); invalid ones are -1."""
+        out = []
+        valid_r = lambda r: (r >= 0) & (r < self.n_rho)  # noqa: E731
+        for dr in (-1, 1):
+            r = ir + dr
+            out.append(np.where(valid_r(r), self._key(np.clip(r, 0, self.n_rho - 1), it, iv,
+                                                      is_), -1))
+        for dv in (-1, 1):
+            v = iv + dv
+            ok = (v >= 0) & (v < self.n_v)
+            out.append(np.where(ok, self._key(ir, it, np.clip(v, 0, self.n_v - 1), is_), -1))
+        # θ ± 1 with wrap-around: the line (ρ, θ) equals (−ρ, θ ± π) with s reversed
+        d_rho = self.cfg.d_rho
+        rho_c = (ir - self.r_off + 0.5) * d_rho
+        wrap_r = np.floor(-rho_c / d_rho).astype(np.int64) + self.r_off
+        for dt in (-1, 1):
+            t = it + dt
+            wraps = (t < 0) | (t >= self.n_theta)
+            t_ok = np.mod(t, self.n_theta)
+            r = np.where(wraps, wrap_r, ir)
+            s = np.where(wraps, 1 - is_, is_)
+            ok = (r >= 0) & (r < self.n_rho)
+            out.append(np.where(ok, self._key(np.clip(r, 0, self.n_rho - 1), t_ok, iv, s), -1))
+        return out
+
+    # -- main loop -------------------------------------------------------------
+    def run(self) -> ModifiedHoughRun:
+        n = len(self.xys)
+        period = _BITS - self.m - 2
+        for k in range(n):
+            if k and k % period == 0:
+                self.acc &= self._bits(k - self.m - 1, k)
+            self._frame(k)
+        return ModifiedHoughRun(self.handoff.tracks(self.perms), self.log)
+
+    @staticmethod
+    def _bits(first: int, last: int) -> np.uint32:
+        mask = 0
+        for f in range(max(first, 0), last + 1):
+            mask |= 1 << (f % _BITS)
+        return np.uint32(mask)
+
+    def _frame(self, k: int) -> None:
+        cfg = self.cfg
+        xy_k = self.xys[k]
+        avail_k = self.available[k]
+        self.handoff.claim(k, self.times[k], xy_k, avail_k)
+        for c in [c for c in self.pairs if c < k - self.m + 1]:
+            del self.pairs[c]
+        window = self._bits(k - self.m + 1, k)
+        keys_all, fa_all, da_all, db_all = [], [], [], []
+        idx_k = np.flatnonzero(avail_k)
+        for back in (1, 2):
+            j = k - back
+            if j < 0 or len(idx_k) == 0:
+                continue
+            idx_j = np.flatnonzero(self.available[j])
+            if len(idx_j) == 0:
+                continue
+            a = self.xys[j][idx_j]
+            b = xy_k[idx_k]
+            dt = self.times[k] - self.times[j]
+            d = (b[None, :, :] - a[:, None, :])
+            v2 = (d[..., 0] ** 2 + d[..., 1] ** 2) / (dt * dt)
+            ia, ib = np.nonzero((v2 >= cfg.v_min ** 2) & (v2 <= cfg.v_max ** 2))
+            if len(ia) == 0:
+                continue
+            rho, theta, v, s = _pair_params(a[ia], b[ib], dt)
+            key = self._key(*self._indices(rho, theta, v, s))
+            keys_all.append(key)
+            fa_all.append(np.full(len(ia), j, dtype=np.int64))
+            da_all.append(idx_j[ia])
+            db_all.append(idx_k[ib])
+        if keys_all:
+            keys = np.concatenate(keys_all)
+            fa = np.concatenate(fa_all)
+            da = np.concatenate(da_all)
+            db = np.concatenate(db_all)
+        else:
+            keys = np.zeros(0, np.int64)
+            fa = da = db = keys
+        created = 0
+        if self.log_on and len(keys):
+            uk = np.unique(keys)
+            created = int(np.count_nonzero((self.acc[uk] & window) == 0))
+        bit_k = np.uint32(1 << (k % _BITS))
+        for back in (1, 2):
+            sel = fa == k - back
+            if np.any(sel):
+                self.acc[keys[sel]] |= bit_k | np.uint32(1 << ((k - back) % _BITS))
+        self.pairs[k] = {"key": keys, "fa": fa, "da": da, "db": db,
+                         "alive": np.ones(len(keys), dtype=bool)}
+        n_conf = self._extract(k, keys, window)
+        if self.log_on:
+            nxt = self._bits(k - self.m + 2, k)
+            tentative = int(np.count_nonzero(self.acc & nxt))
+            destroyed = self.tentative_prev + created - n_conf["cells"] - tentative
+            self.log.append({"frame": k, "time_s": float(self.times[k]),
+                             "candidates": int(len(idx_k)), "pairs": int(len(keys)),
+                             "created": created, "destroyed": max(destroyed, 0),
+                             "confirmed": n_conf["tracks"], "tentative": tentative})
+            self.tentative_prev = tentative
+
+    def _popcount(self, masks: np.ndarray) -> np.ndarray:
+        return np.bitwise_count(masks)
+
+    def _extract(self, k: int, keys: np.ndarray, window: np.uint32) -> dict:
+        out = {"tracks": 0, "cells": 0}
+        if len(keys) == 0:
+            return out
+        need = self.need
+        own = self.acc[keys] & window
+        p_own = self._popcount(own)
+        direct = p_own >= need
+        cands: list[tuple[int, int, int]] = []  # (-P, key, neighbour key or -1)
+        if np.any(direct):
+            uk = np.unique(keys[direct])
+            pk = self._popcount(self.acc[uk] & window)
+            cands += [(-int(p), int(q), -1) for q, p in zip(uk, pk)]
+        short = ~direct
+        if np.any(short):
+            ks = np.unique(keys[short])
+            own_s = self.acc[ks] & window
+            parts = self._unkey(ks)
+            for nb in self._neighbours(*parts):
+                ok = nb >= 0
+                if not np.any(ok):
+                    continue
+                m2 = np.where(ok, self.acc[np.where(ok, nb, 0)], 0) & window
+                hit = ok & (m2 != 0) & (self._popcount(own_s | m2) >= need)
+                for q, q2, p in zip(ks[hit], nb[hit], self._popcount(own_s[hit])):
+                    cands.append((-int(p), int(q), int(q2)))
+        if not cands:
+            return out
+        cands.sort()
+        for _negp, t, t2 in cands:
+            mt = self.acc[t] & window
+            if mt == 0:
+                continue
+            if t2 >= 0:
+                m2 = self.acc[t2] & window
+                if m2 == 0 or int(np.bitwise_count(np.uint32(mt | m2))) < need:
+                    continue
+                if not self._line_close(k, t, t2):
+                    continue
+                cells = [t, t2]
+            else:
+                if int(np.bitwise_count(np.uint32(mt))) < need:
+                    continue
+                cells = [t]
+            pts = self._points(k, cells)
+            hits = self._choose_hits(pts)
+            if len({f for f, _ in hits}) < need:
+                continue
+            rho, theta, v, s = self._centre(t)
+            self.handoff.confirm(hits, k, self.fw,
+                                 info={"method": "modified_hough", "cells": cells,
+                                       "rho_px": rho, "theta_deg": math.degrees(theta),
+                                       "speed_px_s": v, "s": s})
+            for c in cells:
+                self.acc[c] = 0
+                self._kill(lambda _cur, st, c=c: st["key"] == c)
+            self._purge(hits)
+            out["tracks"] += 1
+            out["cells"] += len(cells)
+        return out
+
+    def _points(self, k: int, cells: list[int]) -> np.ndarray:
+        """Distinct (frame, detection) points of the alive pairs in ``cells`` within the window."""
+        rows = []
+        lo = k - self.m + 1
+        for cur, st in self.pairs.items():
+            sel = st["alive"] & np.isin(st["key"], cells)
+            if np.any(sel):
+                rows.append(np.stack([st["fa"][sel], st["da"][sel]], 1))
+                rows.append(np.stack([np.full(int(sel.sum()), cur), st["db"][sel]], 1))
+        if not rows:
+            return np.zeros((0, 2), dtype=np.int64)
+        pts = np.unique(np.concatenate(rows).astype(np.int64), axis=0)
+        return pts[pts[:, 0] >= lo]
+
+    def _choose_hits(self, pts: np.ndarray) -> list[tuple[int, int]]:
+        """One detection per frame: the one nearest a constant-velocity fit of all points."""
+        t = self.times[pts[:, 0]]
+        xy = np.array([self.xys[f][d] for f, d in pts]).reshape(-1, 2)
+        if len(np.unique(t)) < 2:
+            return []
+        pm, v = fit_constant_velocity(t, xy)
+        res = np.hypot(*(xy - (pm + np.outer(t - t.mean(), v))).T)
+        order = np.lexsort((pts[:, 1], res, pts[:, 0]))
+        hits, seen = [], set()
+        for i in order:
+            f = int(pts[i, 0])
+            if f not in seen:
+                seen.add(f)
+                hits.append((f, int(pts[i, 1])))
+        return hits
+
+    def _line_close(self, k: int, t: int, t2: int) -> bool:
+        pts = self._points(k, [t])
+        xy = np.array([self.xys[f][d] for f, d in pts]).reshape(-1, 2)
+        if len(xy) < 2:
+            return False
+        try:
+            rho, theta = line_through_points(xy)
+        except ValueError:
+            return False
+        rho_c, theta_c, _, _ = self._centre(t2)
+        dth = abs(theta - theta_c)
+        if dth > math.pi / 2:  # the same line across the θ wrap
+            dth = math.pi - dth
+            rho = -rho
+        return abs(rho - rho_c) <= self.cfg.d_rho and dth <= self.d_theta
+
+    def _kill(self, pred) -> np.ndarray:
+        """Mark stored pairs matching ``pred(cur, st)`` dead; return the keys newly killed."""
+        killed = []
+        for cur, st in self.pairs.items():
+            sel = st["alive"] & pred(cur, st)
+            if np.any(sel):
+                killed.append(st["key"][sel])
+                st["alive"] &= ~sel
+        return np.concatenate(killed) if killed else np.zeros(0, np.int64)
+
+    def _purge(self, hits: list[tuple[int, int]]) -> None:
+        """Detections of a confirmed track leave every cell and later candidate sets."""
+        for f, d in hits:
+            self.available[f][d] = False
+        hit_f = np.array([h[0] for h in hits])
+        hit_d = np.array([h[1] for h in hits])
+
+        def uses(cur, st):
+            a = np.zeros(len(st["key"]), dtype=bool)
+            b = np.zeros(len(st["key"]), dtype=bool)
+            for f, d in zip(hit_f, hit_d):
+                a |= (st["fa"] == f) & (st["da"] == d)
+                if f == cur:
+                    b |= st["db"] == d
+            return a | b
+
+        aff = np.unique(self._kill(uses))
+        if len(aff) == 0:
+            return
+        self.acc[aff] = 0
+        for cur, st in self.pairs.items():
+            sel = st["alive"] & np.isin(st["key"], aff)
+            if not np.any(sel):
+                continue
+            keys = st["key"][sel]
+            fa = st["fa"][sel]
+            bit_c = np.uint32(1 << (cur % _BITS))
+            for back in (1, 2):
+                s2 = fa == cur - back
+                if np.any(s2):
+                    self.acc[keys[s2]] |= bit_c | np.uint32(1 << ((cur - back) % _BITS))
