@@ -23,6 +23,7 @@ __all__ = [
     "intrinsics_from_focal",
     "intrinsics_from_fov",
     "pixel_rays",
+    "project_directions",
     "project_points",
 ]
 
@@ -125,6 +126,15 @@ def project_points(X_world, K, R, c, dist=None, *, return_depth: bool = False):
     return (uv, z) if return_depth else uv
 
 
+def project_directions(dirs_world, K, R, dist=None, *, return_depth: bool = False):
+    """Project directions (points at infinity, e.g. stars) ``(n, 3)`` to pixels.
+
+    Same as :func:`project_points` with the camera at the origin and the points far away.
+    """
+    d = as_points(dirs_world, "dirs_world", dim=3)
+    return project_points(d, K, R, np.zeros(3), dist, return_depth=return_depth)
+
+
 def pixel_rays(pts, K, R, dist=None) -> np.ndarray:
     """Unit world directions of the lines of sight through pixels ``(n, 2)``.
 
@@ -178,6 +188,11 @@ class PinholeCamera:
         """Pixel coordinates of world points (see :func:`project_points`)."""
         return project_points(X_world, self.K, self.R, self.c, self.dist,
                               return_depth=return_depth)
+
+    def project_directions(self, dirs_world, *, return_depth: bool = False):
+        """Pixel coordinates of directions at infinity (stars)."""
+        return project_directions(dirs_world, self.K, self.R, self.dist,
+                                  return_depth=return_depth)
 
     def rays(self, pts) -> np.ndarray:
         """Unit world directions through pixels (see :func:`pixel_rays`)."""

@@ -36,7 +36,9 @@ __all__ = [
     "DimSequenceConfig",
     "DimTarget",
     "curved_path",
+    "fwhm_to_sigma",
     "m13_star_field",
+    "peak_snr_for_pixel_pd",
     "simulate_dim_sequence",
     "straight_path",
 ]
@@ -327,3 +329,51 @@ def m13_star_field(shape: tuple[int, int] = (256, 256)) -> np.ndarray:
     y0 = (data.shape[0] - h) // 2
     x0 = (data.shape[1] - w) // 2
     return data[y0:y0 + h, x0:x0 + w].copy()
+
+
+def fwhm_to_sigma(fwhm_px: float) -> float:
+    """Gaussian ``δ`` whose full width at half maximum is ``fwhm_px`` (``δ = FWHM / 2.3548``)."""
+    return check_positive(fwhm_px, "fwhm_px") / (2.0 * np.sqrt(2.0 * np.log(2.0)))
+
+
+def peak_snr_for_pixel_pd(p_d: float, p_f: float, sigma_px: float, size: int = 3) -> float:
+    """Peak SNR at which a centred spot's ``size × size`` core is detected with mean rate ``p_d``.
+
+    Pixel ``i`` of the core holds ``a · g_i`` (eq. 1 sampled at pixel centres, ``g`` = 1 at the
+    centre) in unit Gaussian noise and is detected above the CFAR threshold ``Q⁻¹(p_f)`` with
+    probability ``Q(Q⁻¹(p_f) − a g_i)``; the peak ``a`` is solved so that the mean over the core
+    equals ``p_d``.
+
+    Parameters
+    ----------
+    p_d
+        Wanted mean per-pixel detection probability, in (p_f, 1).
+    p_f
+        Per-pixel false-alarm probability in (0, 1).
+    sigma_px
+        Spot width ``δ``.
+    size
+        Odd side of the core (≥ 1).
+
+    Returns
+    -------
+    float
+        Peak amplitude over the noise standard deviation.
+    """
+    from scipy.optimize import brentq
+    from scipy.stats import norm
+
+    from eotrack.validation import check_probability
+
+    pf = check_probability(p_f, "p_f", open_low=True, open_high=True)
+    pd = check_probability(p_d, "p_d", open_low=True, open_high=True)
+    if pd <= pf:
+        raise ValueError(f"p_d must exceed p_f ({pf}), got {pd}")
+    sig = check_positive(sigma_px, "sigma_px")
+    n = check_int(size, "size", min_value=1)
+    if n % 2 == 0:
+        raise ValueError(f"size must be odd, got {n}")
+    k = np.arange(n) - n // 2
+    g = np.exp(-0.5 * np.add.outer(k ** 2, k ** 2).ravel() / sig ** 2)
+    z = norm.isf(pf)
+    return float(brentq(lambda a: norm.sf(z - a * g).mean() - pd, 0.0, 1e3))

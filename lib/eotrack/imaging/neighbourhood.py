@@ -21,7 +21,7 @@ import numpy as np
 
 from eotrack.validation import check_int
 
-__all__ = ["cluster_candidates", "cluster_mask", "neighbourhood_count"]
+__all__ = ["candidate_frames", "cluster_candidates", "cluster_mask", "neighbourhood_count"]
 
 
 def _binary(binary: np.ndarray, name: str = "binary", ndim: tuple[int, ...] = (2,)) -> np.ndarray:
@@ -144,3 +144,53 @@ def cluster_candidates(binary: np.ndarray, window: int, s: int, *, strict: bool 
     cx = np.bincount(lab, weights=cols, minlength=n)[keep] / cnt[keep]
     cy = np.bincount(lab, weights=rows, minlength=n)[keep] / cnt[keep]
     return np.column_stack([cx, cy]).astype(float), mask
+
+
+def candidate_frames(images: np.ndarray, times_s: np.ndarray, p_f: float, window: int, s: int,
+                     *, tile: int | None = 16, strict: bool = False,
+                     keep_masks: bool = False) -> tuple[list[tuple[float, np.ndarray]],
+                                                        np.ndarray | None, np.ndarray | None]:
+    """CFAR segmentation + spatial clustering of every frame of a sequence.
+
+    Parameters
+    ----------
+    images
+        ``(T, H, W)`` frames.
+    times_s
+        ``(T,)`` frame times.
+    p_f
+        CFAR per-pixel false-alarm probability in (0, 1).
+    window, s, strict
+        Spatial clustering (see :func:`cluster_mask`).
+    tile
+        CFAR background tile (see :func:`eotrack.imaging.cfar.tile_background_noise`).
+    keep_masks
+        Also return the binary images ``G`` and clustered images ``I`` as ``(T, H, W)`` stacks.
+
+    Returns
+    -------
+    frames : list of (float, numpy.ndarray)
+        ``(time_s, xy)`` candidate points per frame, ready for an initiator.
+    binary, clustered : numpy.ndarray or None
+        The stacks if ``keep_masks``.
+    """
+    from eotrack.imaging.cfar import cfar_segment
+
+    imgs = np.asarray(images)
+    if imgs.ndim != 3:
+        raise ValueError(f"images must be a (T, H, W) stack, got shape {imgs.shape}")
+    t = np.asarray(times_s, dtype=float)
+    if t.shape != (imgs.shape[0],):
+        raise ValueError(f"times_s must have shape ({imgs.shape[0]},), got {t.shape}")
+    frames = []
+    gs, cs = [], []
+    for k in range(imgs.shape[0]):
+        g = cfar_segment(imgs[k], p_f, tile=tile)
+        xy, mask = cluster_candidates(g, window, s, strict=strict)
+        frames.append((float(t[k]), xy))
+        if keep_masks:
+            gs.append(g)
+            cs.append(mask)
+    if keep_masks:
+        return frames, np.stack(gs), np.stack(cs)
+    return frames, None, None

@@ -44,6 +44,7 @@ from .projection import _check_K, check_rotation, check_translation, skew
 __all__ = [
     "RansacConfig",
     "RansacResult",
+    "best_initial_pose",
     "ransac_pose_dlt",
     "ransac_pose_opencv",
     "refine_pose",
@@ -92,7 +93,7 @@ def _batch_errors(X: np.ndarray, u: np.ndarray, R: np.ndarray, t: np.ndarray,
 
 def refine_pose(points: Any, pixels: Any, K: Any, R0: Any, t0: Any, *,
                 sigma_px: Any = None, max_iter: int = 30,
-                tol: float = 1e-10) -> tuple[np.ndarray, np.ndarray]:
+                tol: float = 1e-9) -> tuple[np.ndarray, np.ndarray]:
     """Levenberg–Marquardt pose refinement minimising ``Σ |u_i − π(R X_i + t)|² / σ_i²``.
 
     Parameters
@@ -177,6 +178,34 @@ def refine_pose_opencv(points: Any, pixels: Any, K: Any, R0: Any,
     return cv2.Rodrigues(rvec)[0], tvec.ravel()
 
 
+def best_initial_pose(points: Any, pixels: Any, K: Any) -> tuple[np.ndarray, np.ndarray]:
+    """Linear start resolved against the planar two-fold ambiguity.
+
+    Candidates: the DLT pose and, for a coplanar target, both solutions of OpenCV's IPPE
+    (``cv2.solvePnPGeneric``); each is refined by unweighted LM and the one with the lowest
+    reprojection cost is returned. With noisy images of a small, distant plane the DLT start
+    often falls into the mirrored ("flipped") local minimum; this picks the better one.
+    """
+    X, u = _check_pair(points, pixels, 6)
+    K = _check_K(K)
+    cands = [dlt_pose(X, u, K)]
+    s = np.linalg.svd(X - X.mean(0), compute_uv=False)
+    if s[2] <= 1e-6 * s[0]:
+        _, rv, tv, _ = cv2.solvePnPGeneric(X, u, K, None, flags=cv2.SOLVEPNP_IPPE)
+        cands += [(cv2.Rodrigues(r)[0], tt.ravel().astype(float)) for r, tt in zip(rv, tv)]
+    best, best_cost = None, np.inf
+    for R0, t0 in cands:
+        if np.any((X @ R0.T + t0)[:, 2] <= 0):
+            continue
+        R1, t1 = refine_pose(X, u, K, R0, t0)
+        c = float(np.sum(reprojection_errors(X, u, R1, t1, K) ** 2))
+        if c < best_cost:
+            best, best_cost = (R1, t1), c
+    if best is None:
+        raise ValueError("points: no candidate pose puts the points in front of the camera")
+    return best
+
+
 @dataclass(frozen=True)
 class RansacConfig:
     """Settings of the paper's RANSAC (§2.2); the paper gives none of the numbers.
@@ -192,8 +221,9 @@ class RansacConfig:
     max_draws
         Step 5: the preset number of draws after which RANSAC reports failure.
     refit
-        Re-estimate the pose from all inliers of the accepted model (DLT + unweighted LM) and
-        re-run the inlier test once with it (§2.2's general description).
+        Re-estimate the pose from all inliers of the accepted model (§2.2's general description:
+        :func:`best_initial_pose`, i.e. DLT or IPPE + unweighted LM) and re-run the inlier test
+        once with it.
     batch
         Draws evaluated per vectorised batch (does not change the result).
     """
@@ -282,8 +312,7 @@ def ransac_pose_dlt(points: Any, pixels: Any, K: Any, rng: np.random.Generator,
             inliers = inl[k]
             Rk, tk = R[k], t[k]
             if cfg.refit:
-                Rk, tk = dlt_pose(X[inliers], u[inliers], K)
-                Rk, tk = refine_pose(X[inliers], u[inliers], K, Rk, tk)
+                Rk, tk = best_initial_pose(X[inliers], u[inliers], K)
                 e = reprojection_errors(X, u, Rk, tk, K)
                 inliers = e < cfg.inlier_threshold_px
                 if inliers.sum() >= 6:

@@ -251,16 +251,25 @@ def select_features_crlb(points: Any, R: Any, t: Any, K: Any, rng: np.random.Gen
     all_idx = np.arange(n)
     s_all = score_of(all_idx)
     ref_all = s_all * (n if start == "per_point" else 1)
-    chosen = None
-    draws = 0
-    for draws in range(1, max_draws + 1):  # noqa: B007 - draws is reported
-        idx = rng.choice(n, size=m0, replace=False)
-        s = score_of(idx)
-        if s * (m0 if start == "per_point" else 1) < ref_all:
-            chosen = idx
-            break
-    if chosen is None:
-        return CRLBSelection(np.ones(n, bool), True, draws, s_all, s_all)
+    # step 2: start draws, scored in one batch; the first (in draw order) that beats all wins
+    draws_idx = np.argsort(rng.random((max_draws, n)), axis=1)[:, :m0]
+    Hd = Ai[draws_idx].sum(1)
+    with np.errstate(all="ignore"):
+        ok_d = np.linalg.cond(Hd) < 1e12
+        Hinv = np.linalg.inv(np.where(ok_d[:, None, None], Hd, np.eye(6)))
+        if rule == "pooled":
+            Cd = (r2v[draws_idx].sum(1) / (2.0 * m0))[:, None, None] * Hinv
+        elif rule == "sandwich":
+            Cd = Hinv @ Si[draws_idx].sum(1) @ Hinv
+        else:
+            Cd = Hinv
+        sd = np.where(ok_d, np.einsum("ij,bij->b", W, Cd), np.inf)
+    sd = np.where(np.isfinite(sd) & (sd > 0), sd, np.inf)
+    win = np.flatnonzero(sd * (m0 if start == "per_point" else 1) < ref_all)
+    if win.size == 0:
+        return CRLBSelection(np.ones(n, bool), True, max_draws, s_all, s_all)
+    draws = int(win[0]) + 1
+    chosen = draws_idx[win[0]]
     sel = np.zeros(n, bool)
     sel[chosen] = True
     H = Ai[chosen].sum(0)
@@ -270,12 +279,20 @@ def select_features_crlb(points: Any, R: Any, t: Any, K: Any, rng: np.random.Gen
     cur = score_of(chosen)
     rest = np.flatnonzero(~sel)
     rest = rng.permutation(rest) if order == "random" else rest[np.argsort(rr[rest], kind="stable")]
+    inv = np.linalg.inv
     for i in rest:
-        s_new = _score(H + Ai[i], W, rule=rule, s2sum=s2 + r2v[i], m=m + 1, Sw=Sw + Si[i])
+        H_new = H + Ai[i]
+        Hi = inv(H_new)
+        if rule == "pooled":
+            s_new = (s2 + r2v[i]) / (2.0 * (m + 1)) * float(np.sum(W * Hi))
+        elif rule == "sandwich":
+            s_new = float(np.sum(W * (Hi @ (Sw + Si[i]) @ Hi)))
+        else:
+            s_new = float(np.sum(W * Hi))
         keep = s_new < cur * (1.0 - tol) if rule == "tolerance" else s_new < cur
         if keep:
             sel[i] = True
-            H = H + Ai[i]
+            H = H_new
             Sw = Sw + Si[i]
             s2 += r2v[i]
             m += 1

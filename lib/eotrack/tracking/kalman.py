@@ -210,13 +210,41 @@ def singer_process_noise(dt: float, alpha: float, sigma_w: float, dim: int = 2) 
 # the standard filter
 # --------------------------------------------------------------------------------------------
 
+def _check_zs(zs: Any, m: int, H: np.ndarray) -> np.ndarray:
+    z = as_finite_array(zs, "zs", ndim=(1, 2), allow_nan=True)
+    if z.ndim == 1:
+        if m != 1:
+            raise ValueError(f"zs must have shape (n, {m}) to match H, got {z.shape}")
+        z = z[:, None]
+    if z.shape[1] != m:
+        raise ValueError(f"zs must have shape (n, {m}) to match H {H.shape}, got {z.shape}")
+    return z
+
+
+def _inv_stack(S: np.ndarray) -> np.ndarray:
+    """Inverse of a stack of small matrices (closed form for 1×1 and 2×2)."""
+    m = S.shape[-1]
+    if m == 1:
+        return 1.0 / S
+    if m == 2:
+        a, b, c, d = S[..., 0, 0], S[..., 0, 1], S[..., 1, 0], S[..., 1, 1]
+        idet = 1.0 / (a * d - b * c)
+        out = np.empty_like(S)
+        out[..., 0, 0] = d * idet
+        out[..., 0, 1] = -b * idet
+        out[..., 1, 0] = -c * idet
+        out[..., 1, 1] = a * idet
+        return out
+    return np.linalg.inv(S)
+
+
 def kalman_filter(zs: Any, F: Any, H: Any, Q: Any, R: Any, x0: Any, P0: Any
                   ) -> tuple[np.ndarray, np.ndarray]:
     """Run the standard Kalman filter (eqs. 31–32, 36–40) over a measurement sequence.
 
     Each step predicts ``x⁻ = F x``, ``P⁻ = F P Fᵀ + Q`` and, if the measurement row is finite,
-    updates with the gain ``K = P⁻Hᵀ(HP⁻Hᵀ + R)⁻¹`` (Joseph form for ``P``). A row that contains
-    NaN means no measurement: the step is a prediction only.
+    updates with the gain ``K = P⁻Hᵀ(HP⁻Hᵀ + R)⁻¹``, ``x = x⁻ + K(z − Hx⁻)``,
+    ``P = P⁻ − K H P⁻``. A row that contains NaN means no measurement: prediction only.
 
     Parameters
     ----------
@@ -233,50 +261,77 @@ def kalman_filter(zs: Any, F: Any, H: Any, Q: Any, R: Any, x0: Any, P0: Any
     xs : numpy.ndarray
         Filtered states ``(n, d)``.
     Ps : numpy.ndarray
-        Filtered covariances ``(n, d, d)``.
+        Filtered covariances ``(n, d, d)`` (symmetrised).
 
     Notes
     -----
-    The predict-then-update order and the Joseph update are those of FilterPy's
-    ``KalmanFilter.batch_filter``, so both give the same estimates on the same data.
+    The predict-then-update order is that of FilterPy's ``KalmanFilter.batch_filter``; both give
+    the same estimates on the same data (to rounding; FilterPy uses the Joseph form for ``P``,
+    algebraically equal for the optimal gain). The loop carries ``[P | x]`` as one ``(d, d+1)``
+    array so that one matrix product predicts both and one rank-``m`` product updates both.
     """
     F_, H_, Q_, R_, x, P = _model(F, H, Q, R, x0, P0)
     m = H_.shape[0]
-    z = as_finite_array(zs, "zs", ndim=(1, 2), allow_nan=True)
-    if z.ndim == 1:
-        if m != 1:
-            raise ValueError(f"zs must have shape (n, {m}) to match H, got {z.shape}")
-        z = z[:, None]
-    if z.shape[1] != m:
-        raise ValueError(f"zs must have shape (n, {m}) to match H {H_.shape}, got {z.shape}")
+    z = _check_zs(zs, m, H_)
     n, d = len(z), F_.shape[0]
-    xs = np.empty((n, d))
-    Ps = np.empty((n, d, d))
-    FT, HT = F_.T, H_.T
-    eye = np.eye(d)
-    have = np.all(np.isfinite(z), axis=1)
-    x = x.copy()
-    P = P.copy()
-    for k in range(n):
-        x = F_ @ x
-        P = F_ @ P @ FT + Q_
-        if have[k]:
-            PHT = P @ HT
-            S = H_ @ PHT + R_
-            K = np.linalg.solve(S, PHT.T).T
-            x = x + K @ (z[k] - H_ @ x)
-            IKH = eye - K @ H_
-            P = IKH @ P @ IKH.T + K @ R_ @ K.T
-        P = 0.5 * (P + P.T)
-        xs[k] = x
-        Ps[k] = P
-    return xs, Ps
+    FT = np.ascontiguousarray(F_.T)
+    M = np.empty((d, d + 1))
+    M[:, :d] = P
+    M[:, d] = x
+    out = np.empty((n, d, d + 1))
+    have = np.all(np.isfinite(z), axis=1).tolist()
+    Zr = np.zeros((n, m, d + 1))
+    Zr[:, :, d] = np.where(np.isfinite(z), z, 0.0)
+    selector = np.array_equal(H_, np.hstack([np.eye(m), np.zeros((m, d - m))]))
+    if selector and m == 2:
+        r00, r01, r10, r11 = R_.ravel().tolist()
+        for k in range(n):
+            M = F_ @ M
+            P = M[:, :d] @ FT
+            P += Q_
+            M[:, :d] = P
+            if have[k]:
+                a, b, c, e = P[:2, :2].ravel().tolist()
+                a += r00
+                b += r01
+                c += r10
+                e += r11
+                idet = 1.0 / (a * e - b * c)
+                K = P[:, :2] @ np.array(((e * idet, -b * idet), (-c * idet, a * idet)))
+                M -= K @ (M[:2] - Zr[k])
+                if k % 8 == 0:
+                    P = M[:, :d]
+                    M[:, :d] = 0.5 * (P + P.T)
+            out[k] = M
+    else:
+        HT = np.ascontiguousarray(H_.T)
+        for k in range(n):
+            M = F_ @ M
+            P = M[:, :d] @ FT
+            P += Q_
+            M[:, :d] = P
+            if have[k]:
+                PHT = P @ HT
+                K = PHT @ _inv_stack(H_ @ PHT + R_)
+                G = H_ @ M
+                G[:, d] -= Zr[k, :, d]
+                M -= K @ G
+                P = M[:, :d]
+                M[:, :d] = 0.5 * (P + P.T)
+            out[k] = M
+    Ps = out[:, :, :d]
+    return out[:, :, d].copy(), 0.5 * (Ps + np.swapaxes(Ps, 1, 2))
 
 
 def kalman_filter_batch(zs: Any, F: Any, H: Any, Q: Any, R: Any, x0: Any, P0: Any, *,
                         return_covariances: bool = False
                         ) -> tuple[np.ndarray, np.ndarray]:
     """Run :func:`kalman_filter` on ``B`` independent sequences at once (vectorised over ``B``).
+
+    The covariance recursion does not depend on the measured values, only on which frames have
+    a measurement. Sequences that share that history share their covariances and gains, so the
+    filter keeps one covariance per distinct history (all sequences share one when every frame
+    is measured) and applies the gains to the ``(B, d)`` states in single array operations.
 
     Parameters
     ----------
@@ -287,7 +342,7 @@ def kalman_filter_batch(zs: Any, F: Any, H: Any, Q: Any, R: Any, x0: Any, P0: An
     x0
         Initial states ``(d,)`` (shared) or ``(B, d)``.
     P0
-        Initial covariance ``(d, d)`` (shared) or ``(B, d, d)``.
+        Initial covariance ``(d, d)``, shared by all sequences.
     return_covariances
         Return all covariances ``(B, n, d, d)`` (memory!) instead of only the final ones.
 
@@ -301,44 +356,50 @@ def kalman_filter_batch(zs: Any, F: Any, H: Any, Q: Any, R: Any, x0: Any, P0: An
     z = as_finite_array(zs, "zs", ndim=3, allow_nan=True)
     B, n, m = z.shape
     x0a = as_finite_array(x0, "x0", ndim=(1, 2))
-    P0a = as_finite_array(P0, "P0", ndim=(2, 3))
-    F_, H_, Q_, R_, _, _ = _model(F, H, Q, R, x0a if x0a.ndim == 1 else x0a[0],
-                                  P0a if P0a.ndim == 2 else P0a[0])
+    F_, H_, Q_, R_, _, P0_ = _model(F, H, Q, R, x0a if x0a.ndim == 1 else x0a[0], P0)
     d = F_.shape[0]
     if H_.shape[0] != m:
         raise ValueError(f"zs must have last dimension {H_.shape[0]} to match H, got {m}")
-    x = np.broadcast_to(x0a, (B, d)).copy()
     if x0a.ndim == 2 and x0a.shape != (B, d):
         raise ValueError(f"x0 must have shape ({d},) or ({B}, {d}), got {x0a.shape}")
-    if P0a.ndim == 3:
-        if P0a.shape != (B, d, d):
-            raise ValueError(f"P0 must have shape ({d}, {d}) or ({B}, {d}, {d}), got {P0a.shape}")
-        if not is_positive_definite(P0a):
-            raise ValueError("P0 must be positive definite")
-    P = np.broadcast_to(P0a, (B, d, d)).copy()
+    x = np.array(np.broadcast_to(x0a, (B, d)))
     xs = np.empty((B, n, d))
     Ps = np.empty((B, n, d, d)) if return_covariances else None
     have = np.all(np.isfinite(z), axis=2)
     z0 = np.where(np.isfinite(z), z, 0.0)
-    FT, HT = F_.T, H_.T
-    eye = np.eye(d)
+    FT = np.ascontiguousarray(F_.T)
+    HT = np.ascontiguousarray(H_.T)
+    cls = np.zeros(B, dtype=np.int64)        # covariance class of each sequence
+    Pc = P0_[None].copy()                    # (C, d, d)
     for k in range(n):
-        x = x @ FT
-        P = F_ @ P @ FT + Q_
-        PHT = P @ HT                                   # (B, d, m)
-        S = H_ @ PHT + R_                              # (B, m, m)
-        K = np.swapaxes(np.linalg.solve(S, np.swapaxes(PHT, 1, 2)), 1, 2)  # (B, d, m)
         h = have[:, k]
-        K = K * h[:, None, None]                        # no measurement -> zero gain
-        innov = z0[:, k] - x @ H_.T
-        x = x + np.einsum("bdm,bm->bd", K, innov)
-        IKH = eye - K @ H_
-        P = IKH @ P @ np.swapaxes(IKH, 1, 2) + K @ R_ @ np.swapaxes(K, 1, 2)
-        P = 0.5 * (P + np.swapaxes(P, 1, 2))
+        if len(Pc) == 1 and (h.all() or not h.any()):
+            hc = np.array([bool(h[0])])
+        else:
+            key = cls * 2 + h
+            uniq, cls = np.unique(key, return_inverse=True)
+            Pc = Pc[uniq // 2]
+            hc = (uniq % 2).astype(bool)
+        Pc = F_ @ Pc @ FT + Q_
+        x = x @ FT
+        if hc.any():
+            Pu = Pc[hc]
+            PHT = Pu @ HT
+            K = PHT @ _inv_stack(H_ @ PHT + R_)                     # (Cu, d, m)
+            Pu = Pu - K @ np.swapaxes(PHT, 1, 2)
+            Pc[hc] = 0.5 * (Pu + np.swapaxes(Pu, 1, 2))
+            innov = z0[:, k] - x @ HT
+            if len(Pc) == 1:
+                x += innov @ K[0].T
+            else:
+                Kc = np.zeros((len(Pc), d, m))
+                Kc[hc] = K
+                x += np.einsum("bdm,bm->bd", Kc[cls], innov)
         xs[:, k] = x
         if Ps is not None:
-            Ps[:, k] = P
-    return xs, (Ps if Ps is not None else P)
+            Ps[:, k] = Pc[cls] if len(Pc) > 1 else Pc[0]
+    Pfinal = Pc[cls] if len(Pc) > 1 else np.broadcast_to(Pc[0], (B, d, d)).copy()
+    return xs, (Ps if Ps is not None else Pfinal)
 
 
 class KalmanFilter:

@@ -207,6 +207,8 @@ class _Engine:
         self.acc = np.zeros(n_cells, dtype=np.uint32)
         self.available = [np.ones(len(x), dtype=bool) for x in xys]
         self.fw = [Frame(float(t), x) for t, x in zip(times, xys)]
+        self.flag = np.zeros(n_cells, dtype=bool)
+        self.cleared: dict[int, int] = {}
         self.handoff = TrackHandOff(cfg.handoff_gate_px)
         # stored pairs of the last m current frames: dict frame -> dict of arrays
         self.pairs: dict[int, dict[str, np.ndarray]] = {}
@@ -334,8 +336,7 @@ class _Engine:
             sel = fa == k - back
             if np.any(sel):
                 self.acc[keys[sel]] |= bit_k | np.uint32(1 << ((k - back) % _BITS))
-        self.pairs[k] = {"key": keys, "fa": fa, "da": da, "db": db,
-                         "alive": np.ones(len(keys), dtype=bool)}
+        self.pairs[k] = {"key": keys, "fa": fa, "da": da, "db": db}
         n_conf = self._extract(k, keys, window)
         if self.log_on:
             nxt = self._bits(k - self.m + 2, k)
@@ -347,90 +348,92 @@ class _Engine:
                              "confirmed": n_conf["tracks"], "tentative": tentative})
             self.tentative_prev = tentative
 
-    def _popcount(self, masks: np.ndarray) -> np.ndarray:
-        return np.bitwise_count(masks)
-
     def _extract(self, k: int, keys: np.ndarray, window: np.uint32) -> dict:
+        """Examine the cells of S_k in decreasing P and confirm tracks (see module docs)."""
         out = {"tracks": 0, "cells": 0}
         if len(keys) == 0:
             return out
         need = self.need
-        own = self.acc[keys] & window
-        p_own = self._popcount(own)
+        pop = np.bitwise_count
+        p_own = pop(self.acc[keys] & window)
         direct = p_own >= need
-        cands: list[tuple[int, int, int]] = []  # (-P, key, neighbour key or -1)
-        if np.any(direct):
-            uk = np.unique(keys[direct])
-            pk = self._popcount(self.acc[uk] & window)
-            cands += [(-int(p), int(q), -1) for q, p in zip(uk, pk)]
+        cand_t = [keys[direct]]
+        cand_t2 = [np.full(int(direct.sum()), -1, dtype=np.int64)]
+        cand_p = [p_own[direct]]
         short = ~direct
         if np.any(short):
-            ks = np.unique(keys[short])
+            ks = keys[short]
             own_s = self.acc[ks] & window
-            parts = self._unkey(ks)
-            for nb in self._neighbours(*parts):
-                ok = nb >= 0
-                if not np.any(ok):
-                    continue
-                m2 = np.where(ok, self.acc[np.where(ok, nb, 0)], 0) & window
-                hit = ok & (m2 != 0) & (self._popcount(own_s | m2) >= need)
-                for q, q2, p in zip(ks[hit], nb[hit], self._popcount(own_s[hit])):
-                    cands.append((-int(p), int(q), int(q2)))
-        if not cands:
+            p_s = p_own[short]
+            for nb in self._neighbours(*self._unkey(ks)):
+                m2 = self.acc[np.maximum(nb, 0)] & window
+                hit = (nb >= 0) & (m2 != 0) & (pop(own_s | m2) >= need)
+                if np.any(hit):
+                    cand_t.append(ks[hit])
+                    cand_t2.append(nb[hit])
+                    cand_p.append(p_s[hit])
+        t_all = np.concatenate(cand_t)
+        if len(t_all) == 0:
             return out
-        cands.sort()
+        cands = np.unique(np.stack([-np.concatenate(cand_p).astype(np.int64), t_all,
+                                    np.concatenate(cand_t2)], 1), axis=0)
+        sub = self._pairs_in(k, np.unique(cands[:, 1:][cands[:, 1:] >= 0]))
+        lo = k - self.m + 1
         for _negp, t, t2 in cands:
-            mt = self.acc[t] & window
-            if mt == 0:
+            cells = [int(t)] if t2 < 0 else [int(t), int(t2)]
+            if any(self.cleared.get(c, -1) == k for c in cells):
                 continue
-            if t2 >= 0:
-                m2 = self.acc[t2] & window
-                if m2 == 0 or int(np.bitwise_count(np.uint32(mt | m2))) < need:
-                    continue
-                if not self._line_close(k, t, t2):
-                    continue
-                cells = [t, t2]
-            else:
-                if int(np.bitwise_count(np.uint32(mt))) < need:
-                    continue
-                cells = [t]
-            pts = self._points(k, cells)
+            pts = self._points_of(sub, cells, lo)
+            if len(np.unique(pts[:, 0])) < need:
+                continue
+            if t2 >= 0 and not self._line_close(sub, int(t), int(t2), lo):
+                continue
             hits = self._choose_hits(pts)
-            if len({f for f, _ in hits}) < need:
-                continue
-            rho, theta, v, s = self._centre(t)
+            rho, theta, v, s = self._centre(int(t))
             self.handoff.confirm(hits, k, self.fw,
                                  info={"method": "modified_hough", "cells": cells,
                                        "rho_px": rho, "theta_deg": math.degrees(theta),
                                        "speed_px_s": v, "s": s})
             for c in cells:
                 self.acc[c] = 0
-                self._kill(lambda _cur, st, c=c: st["key"] == c)
-            self._purge(hits)
+                self.cleared[c] = k
+            for f, d in hits:
+                self.available[f][d] = False
             out["tracks"] += 1
             out["cells"] += len(cells)
         return out
 
-    def _points(self, k: int, cells: list[int]) -> np.ndarray:
-        """Distinct (frame, detection) points of the alive pairs in ``cells`` within the window."""
+    def _pairs_in(self, k: int, cells: np.ndarray) -> np.ndarray:
+        """Stored pairs falling in ``cells``: rows ``(key, f_a, d_a, f_b, d_b)``."""
+        self.flag[cells] = True
         rows = []
-        lo = k - self.m + 1
         for cur, st in self.pairs.items():
-            sel = st["alive"] & np.isin(st["key"], cells)
+            sel = self.flag[st["key"]]
             if np.any(sel):
-                rows.append(np.stack([st["fa"][sel], st["da"][sel]], 1))
-                rows.append(np.stack([np.full(int(sel.sum()), cur), st["db"][sel]], 1))
-        if not rows:
+                key = st["key"][sel]
+                born = np.full(len(key), cur, dtype=np.int64)
+                # pairs older than the last clearing of their cell are dead
+                dead = np.array([self.cleared.get(int(q), -1) >= cur for q in key], dtype=bool)
+                rows.append(np.stack([key, st["fa"][sel], st["da"][sel], born, st["db"][sel]],
+                                     1)[~dead])
+        self.flag[cells] = False
+        return np.concatenate(rows) if rows else np.zeros((0, 5), dtype=np.int64)
+
+    def _points_of(self, sub: np.ndarray, cells: list[int], lo: int) -> np.ndarray:
+        """Distinct still-available ``(frame, detection)`` points of Q(cells) in the window."""
+        rows = sub[np.isin(sub[:, 0], cells)]
+        pts = np.concatenate([rows[:, 1:3], rows[:, 3:5]])
+        if len(pts) == 0:
             return np.zeros((0, 2), dtype=np.int64)
-        pts = np.unique(np.concatenate(rows).astype(np.int64), axis=0)
-        return pts[pts[:, 0] >= lo]
+        pts = np.unique(pts, axis=0)
+        pts = pts[pts[:, 0] >= lo]
+        keep = np.array([self.available[f][d] for f, d in pts], dtype=bool)
+        return pts[keep].reshape(-1, 2)
 
     def _choose_hits(self, pts: np.ndarray) -> list[tuple[int, int]]:
         """One detection per frame: the one nearest a constant-velocity fit of all points."""
         t = self.times[pts[:, 0]]
         xy = np.array([self.xys[f][d] for f, d in pts]).reshape(-1, 2)
-        if len(np.unique(t)) < 2:
-            return []
         pm, v = fit_constant_velocity(t, xy)
         res = np.hypot(*(xy - (pm + np.outer(t - t.mean(), v))).T)
         order = np.lexsort((pts[:, 1], res, pts[:, 0]))
@@ -442,11 +445,10 @@ class _Engine:
                 hits.append((f, int(pts[i, 1])))
         return hits
 
-    def _line_close(self, k: int, t: int, t2: int) -> bool:
-        pts = self._points(k, [t])
+    def _line_close(self, sub: np.ndarray, t: int, t2: int, lo: int) -> bool:
+        """Is the least-squares line through Q(t) within one cell (ρ, θ) of t2's centre?"""
+        pts = self._points_of(sub, [t], lo)
         xy = np.array([self.xys[f][d] for f, d in pts]).reshape(-1, 2)
-        if len(xy) < 2:
-            return False
         try:
             rho, theta = line_through_points(xy)
         except ValueError:
@@ -457,45 +459,3 @@ class _Engine:
             dth = math.pi - dth
             rho = -rho
         return abs(rho - rho_c) <= self.cfg.d_rho and dth <= self.d_theta
-
-    def _kill(self, pred) -> np.ndarray:
-        """Mark stored pairs matching ``pred(cur, st)`` dead; return the keys newly killed."""
-        killed = []
-        for cur, st in self.pairs.items():
-            sel = st["alive"] & pred(cur, st)
-            if np.any(sel):
-                killed.append(st["key"][sel])
-                st["alive"] &= ~sel
-        return np.concatenate(killed) if killed else np.zeros(0, np.int64)
-
-    def _purge(self, hits: list[tuple[int, int]]) -> None:
-        """Detections of a confirmed track leave every cell and later candidate sets."""
-        for f, d in hits:
-            self.available[f][d] = False
-        hit_f = np.array([h[0] for h in hits])
-        hit_d = np.array([h[1] for h in hits])
-
-        def uses(cur, st):
-            a = np.zeros(len(st["key"]), dtype=bool)
-            b = np.zeros(len(st["key"]), dtype=bool)
-            for f, d in zip(hit_f, hit_d):
-                a |= (st["fa"] == f) & (st["da"] == d)
-                if f == cur:
-                    b |= st["db"] == d
-            return a | b
-
-        aff = np.unique(self._kill(uses))
-        if len(aff) == 0:
-            return
-        self.acc[aff] = 0
-        for cur, st in self.pairs.items():
-            sel = st["alive"] & np.isin(st["key"], aff)
-            if not np.any(sel):
-                continue
-            keys = st["key"][sel]
-            fa = st["fa"][sel]
-            bit_c = np.uint32(1 << (cur % _BITS))
-            for back in (1, 2):
-                s2 = fa == cur - back
-                if np.any(s2):
-                    self.acc[keys[s2]] |= bit_c | np.uint32(1 << ((cur - back) % _BITS))

@@ -1,0 +1,216 @@
+"""Association of points across views by the epipolar constraint (Huang et al., §1.2 steps 4–6).
+
+* :func:`associate` — step 4 (candidates: distance below the threshold L) and step 5 (a point
+  with several candidates keeps the nearest; every point is used at most once). The paper's
+  rule is implemented as a greedy pass over all candidate pairs in increasing distance, which
+  is "nearest wins, one-to-one" without depending on the order of the points. The global
+  alternative solves the one-to-one assignment that maximises the number of pairs and then
+  minimises their total distance (``scipy.optimize.linear_sum_assignment``).
+* :func:`summary_table` — step 6 (Table 3): maps in order, a new point joins a row if it is
+  associated with every earlier element of that row, otherwise it starts a new row.
+* :func:`three_view_check` — beyond the paper: a pair is kept only if the triangulated point,
+  projected into every other view whose image it falls in, finds a detection there.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+
+import numpy as np
+from scipy.optimize import linear_sum_assignment
+
+from eotrack.validation import as_finite_array, as_points, check_choice, check_positive
+
+from .camera import PinholeCamera
+from .triangulation import triangulate_two_rays
+
+__all__ = [
+    "ASSOCIATION_RULES",
+    "associate",
+    "greedy_candidates",
+    "summary_table",
+    "three_view_check",
+]
+
+ASSOCIATION_RULES = ("paper", "hungarian")
+
+
+def _check_dist(dist) -> np.ndarray:
+    d = as_finite_array(dist, "dist", allow_nan=False)
+    if d.ndim != 2:
+        raise ValueError(f"dist must be a 2-D (n1, n2) distance matrix, got shape {d.shape}")
+    if d.size and d.min() < 0:
+        raise ValueError("dist must hold non-negative distances")
+    return d
+
+
+def _check_threshold(threshold) -> float:
+    if isinstance(threshold, bool) or not isinstance(threshold, int | float | np.number):
+        raise TypeError(f"threshold must be a real number (pixels), got "
+                        f"{type(threshold).__name__}")
+    t = float(threshold)
+    if not np.isfinite(t) or t < 0:
+        raise ValueError(f"threshold must be finite and >= 0 (pixels), got {threshold!r}")
+    return t
+
+
+def greedy_candidates(dist, threshold) -> np.ndarray:
+    """The paper's rule: pairs ``(i, j)`` with ``dist < threshold``, nearest first, one-to-one.
+
+    Because candidates are taken in increasing distance, the pairs accepted for a smaller
+    threshold are exactly the accepted pairs whose distance is below it — one pass at the
+    largest threshold serves a whole threshold sweep.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``(k, 2)`` integer pairs in acceptance order (increasing distance).
+    """
+    d = _check_dist(dist)
+    t = _check_threshold(threshold)
+    ii, jj = np.nonzero(d < t)
+    if len(ii) == 0:
+        return np.zeros((0, 2), int)
+    order = np.argsort(d[ii, jj], kind="stable")
+    used_i = np.zeros(d.shape[0], bool)
+    used_j = np.zeros(d.shape[1], bool)
+    out = []
+    for i, j in zip(ii[order], jj[order]):
+        if not used_i[i] and not used_j[j]:
+            used_i[i] = used_j[j] = True
+            out.append((i, j))
+    return np.array(out, int).reshape(-1, 2)
+
+
+def associate(dist, threshold, *, rule: str = "paper") -> np.ndarray:
+    """One-to-one association from a distance matrix.
+
+    Parameters
+    ----------
+    dist
+        ``(n1, n2)`` non-negative distances (e.g. :func:`epipolar_distances`).
+    threshold
+        Gate L (px, ≥ 0): only pairs with ``dist < L`` can be associated.
+    rule
+        ``"paper"`` (greedy nearest-first) or ``"hungarian"`` (global assignment).
+
+    Returns
+    -------
+    numpy.ndarray
+        ``(k, 2)`` integer index pairs ``(i, j)``, sorted by ``i``.
+    """
+    d = _check_dist(dist)
+    t = _check_threshold(threshold)
+    check_choice(rule, "rule", ASSOCIATION_RULES)
+    if d.size == 0:
+        return np.zeros((0, 2), int)
+    if rule == "paper":
+        pairs = greedy_candidates(d, t)
+    else:
+        ok = d < t
+        if not ok.any():
+            return np.zeros((0, 2), int)
+        big = (d[ok].sum() + 1.0) * 2.0
+        cost = np.where(ok, d, big)
+        ri, ci = linear_sum_assignment(cost)
+        keep = ok[ri, ci]
+        pairs = np.stack([ri[keep], ci[keep]], 1)
+    return pairs[np.argsort(pairs[:, 0], kind="stable")] if len(pairs) else pairs
+
+
+def summary_table(n_points: Sequence[int], matches: Mapping[tuple[int, int], np.ndarray]
+                  ) -> np.ndarray:
+    """Step 6: merge pairwise associations into rows of one target each (Table 3).
+
+    Parameters
+    ----------
+    n_points
+        Number of points in each map, in map order.
+    matches
+        ``{(a, b): pairs}`` with ``a < b`` map indices and ``pairs`` ``(k, 2)`` index pairs
+        (point of map a, point of map b). Missing map pairs mean "no associations".
+
+    Returns
+    -------
+    numpy.ndarray
+        ``(rows, n_maps)`` point indices, −1 where a map has no element in the row. Every point
+        appears in exactly one row; rows with a single element are points associated with
+        nothing (the paper's table lists only rows with two or more).
+    """
+    counts = [int(n) for n in n_points]
+    if any(n < 0 for n in counts):
+        raise ValueError("n_points must be non-negative")
+    n_maps = len(counts)
+    linked: dict[tuple[int, int], set[tuple[int, int]]] = {}
+    for key, pairs in matches.items():
+        a, b = key
+        if not (0 <= a < b < n_maps):
+            raise ValueError(f"matches keys must be (a, b) with 0 <= a < b < {n_maps}, got {key}")
+        p = np.asarray(pairs, int).reshape(-1, 2)
+        if len(p) and (p[:, 0].max() >= counts[a] or p[:, 1].max() >= counts[b] or p.min() < 0):
+            raise ValueError(f"matches[{key}] holds an index outside the maps' point counts")
+        linked[(a, b)] = {(int(i), int(j)) for i, j in p}
+    rows: list[list[int]] = []
+    for m in range(n_maps):
+        for p in range(counts[m]):
+            target = None
+            for row in rows:
+                if row[m] != -1:
+                    continue
+                members = [(a, row[a]) for a in range(m) if row[a] != -1]
+                if members and all((i, p) in linked.get((a, m), ()) for a, i in members):
+                    target = row
+                    break
+            if target is None:
+                target = [-1] * n_maps
+                rows.append(target)
+            target[m] = p
+    return np.array(rows, int).reshape(-1, n_maps)
+
+
+def three_view_check(pts_a, pts_b, pairs, cam_a: PinholeCamera, cam_b: PinholeCamera,
+                     others: Sequence[tuple[PinholeCamera, np.ndarray]], gate_px: float
+                     ) -> np.ndarray:
+    """Keep a pair only if the views that should see its target do see something there.
+
+    For each pair the two lines of sight are triangulated and the point projected into every
+    other camera; if it falls inside that image and no detection lies within ``gate_px``, the
+    pair is inconsistent (a false association such as the paper's Fig. 4(e)).
+
+    Parameters
+    ----------
+    pts_a, pts_b
+        Pixel coordinates of the two maps.
+    pairs
+        ``(k, 2)`` index pairs into ``pts_a`` and ``pts_b``.
+    cam_a, cam_b
+        The two cameras (poses as known to the associator).
+    others
+        ``(camera, points)`` of the other maps.
+    gate_px
+        Transfer gate (px, > 0).
+
+    Returns
+    -------
+    numpy.ndarray of bool
+        ``(k,)`` — True where the pair is consistent.
+    """
+    pa = as_points(pts_a, "pts_a")
+    pb = as_points(pts_b, "pts_b")
+    pr = np.asarray(pairs, int).reshape(-1, 2)
+    gate = check_positive(gate_px, "gate_px")
+    if len(pr) == 0:
+        return np.zeros(0, bool)
+    X = triangulate_two_rays(cam_a.c, cam_a.rays(pa[pr[:, 0]]), cam_b.c,
+                             cam_b.rays(pb[pr[:, 1]]))
+    keep = np.ones(len(pr), bool)
+    for cam, pts in others:
+        q = as_points(pts, "others points")
+        inside = cam.sees(X)
+        uv = cam.project(X)
+        if len(q):
+            near = np.min(np.linalg.norm(uv[:, None, :] - q[None], axis=2), axis=1) <= gate
+        else:
+            near = np.zeros(len(pr), bool)
+        keep &= ~inside | near
+    return keep
