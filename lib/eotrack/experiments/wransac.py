@@ -77,6 +77,8 @@ __all__ = [
     "run_prediction_experiment",
     "station_correlations",
     "budget_sensitivity",
+    "coords_table",
+    "explore",
     "threshold_sensitivity",
 ]
 
@@ -966,7 +968,10 @@ def reproduce(*, quick: bool = False, runner: TrialRunner | None = None,
         "Table 1's coordinate is not stated in the paper; we report Dec and RA (RA as the "
         "drift against the sidereal rotation, arcsec of RA).")
     return Reproduction(slug=SLUG, title=TITLE, claims=rows, tables=tables, figures=figs,
-                        text=text, settings={**{k: v for k, v in asdict(cfg).items()},
+                        text=text, data={"scenario": sc, "results": res, "literal": literal,
+                                         "threshold_sensitivity": sens, "budget": budget,
+                                         "correlations": corr},
+                        settings={**{k: v for k, v in asdict(cfg).items()},
                                              "n_runs_used": n_runs, "quick": quick,
                                              "U": cfg.n_hypotheses,
                                              "hypotheses drawn": cfg.n_draws})
@@ -975,3 +980,65 @@ def reproduce(*, quick: bool = False, runner: TrialRunner | None = None,
 def with_changes(config: WransacConfig | None = None, **changes) -> WransacConfig:
     """A copy of ``config`` (default: the paper's) with some fields changed (for widgets)."""
     return replace(config or WransacConfig(), **changes)
+
+
+def coords_table(corr: pd.DataFrame, paper: dict) -> pd.DataFrame:
+    """§2 correlations, the paper's beside ours (rows: station change × coordinate)."""
+    rows = []
+    for change in ("longitude", "latitude"):
+        for k in ("az", "el", "ra", "dec"):
+            rows.append({"station change": change, "coordinate": k,
+                         "paper": paper[change][k], "ours": corr.loc[change, k],
+                         "ours (RA unwrapped)": corr.loc[change, "ra_unwrapped"]
+                         if k == "ra" else np.nan})
+    return pd.DataFrame(rows).set_index(["station change", "coordinate"])
+
+
+def explore(sigma_arcsec: float = 3.0, outlier_fraction: float = 0.03,
+            threshold_sigmas: float = 3.0, loss: str = "sinusoidal", horizon_min: int = 72,
+            model: str = "sinusoid_drift", n_runs: int = 10, *, scenario: Scenario | None = None,
+            ax: plt.Axes | None = None) -> plt.Axes:
+    """Widget back end: rerun the experiment with other settings and plot the Dec errors.
+
+    RANSAC uses ``loss`` for scoring (``"sinusoidal"`` also switches on the weighted refit,
+    i.e. WRANSAC); LSQ is shown for reference.
+    """
+    check_choice(loss, "loss", tuple(LOSSES))
+    cfg = replace(WransacConfig(), sigma_arcsec=float(sigma_arcsec),
+                  outlier_fraction=float(outlier_fraction),
+                  threshold_sigmas=float(threshold_sigmas), horizons_min=(int(horizon_min),))
+    sc = scenario if scenario is not None else make_scenario(cfg, quick=True)
+    keep = (sc.t_pred_s - sc.t_obs_s[-1]) <= horizon_min * 60.0 + 1e-9
+    sc = replace(sc, t_pred_s=sc.t_pred_s[keep], truth_pred=sc.truth_pred[:, keep],
+                 shadow_pred=sc.shadow_pred[keep])
+    runs = TrialRunner(progress=False).map(
+        _explore_trial, n_runs, seed=cfg.seed, desc="explore",
+        args=(sc.t_obs_s, sc.truth_obs[1], sc.t_pred_s, sc.truth_pred[1], cfg, loss, model))
+    err = np.stack(runs)  # runs, 2 methods, times
+    ax = get_ax(ax, figsize=(7.5, 4))
+    tm = (sc.t_pred_s - sc.t_obs_s[-1]) / 60.0
+    names = ("LSQ", "WRANSAC" if loss == "sinusoidal" else f"RANSAC ({loss})")
+    for i, name in enumerate(names):
+        lo, med, hi = np.percentile(err[:, i], [5, 50, 95], axis=0)
+        ax.plot(tm, med, color=f"C{i}", label=f"{name}: max|e| {np.abs(err[:, i]).max():.0f}″")
+        ax.fill_between(tm, lo, hi, color=f"C{i}", alpha=0.2)
+    lim = max(30.0, 1.5 * np.percentile(np.abs(err[:, 1]), 95))
+    ax.set_ylim(-lim, lim)
+    ax.set(xlabel="minutes ahead", ylabel="Dec prediction error (arcsec)",
+           title=f"σ = {sigma_arcsec:g}″, {100 * outlier_fraction:.0f} % gross errors, "
+                 f"t = {threshold_sigmas:g}σ, {n_runs} runs")
+    ax.legend(fontsize=8)
+    return ax
+
+
+def _explore_trial(rng: np.random.Generator, t_obs: np.ndarray, truth_obs: np.ndarray,
+                   t_pred: np.ndarray, truth_pred: np.ndarray, cfg: WransacConfig, loss: str,
+                   model: str) -> np.ndarray:
+    y, _ = simulate_observations(rng, truth_obs, cfg.sigma_arcsec, cfg.outlier_fraction,
+                                 cfg.gross_error_arcsec)
+    lsq = fit_predict("lsq", t_obs, y, t_pred, rng=rng, model=model)
+    meth = "wransac" if loss == "sinusoidal" else "ransac"
+    rob = fit_predict(meth, t_obs, y, t_pred, rng=rng, threshold=cfg.threshold_arcsec,
+                      n_hypotheses=cfg.n_draws, model=model, loss=None if meth == "wransac"
+                      else loss)
+    return np.stack([lsq - truth_pred, rob - truth_pred])

@@ -85,7 +85,7 @@ def check_intrinsics(K, name: str = "K") -> np.ndarray:
     k = as_finite_array(K, name)
     if k.shape != (3, 3):
         raise ValueError(f"{name} must be a 3x3 intrinsic matrix, got shape {k.shape}")
-    if not np.allclose(k[2], [0.0, 0.0, 1.0]):
+    if k[2, 0] != 0.0 or k[2, 1] != 0.0 or abs(k[2, 2] - 1.0) > 1e-12:
         raise ValueError(f"{name} must have last row (0, 0, 1), got {k[2].tolist()}")
     if abs(k[0, 0] * k[1, 1]) < 1e-12:
         raise ValueError(f"{name} is singular (focal lengths {k[0, 0]}, {k[1, 1]}); need "

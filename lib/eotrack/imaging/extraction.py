@@ -204,10 +204,10 @@ def _components(mask: np.ndarray, weights: np.ndarray, cfg: ExtractionConfig
 
 
 def _robust_std(a: np.ndarray) -> float:
-    step = max(1, int(np.sqrt(a.size / 4096)))
+    step = max(1, int(np.sqrt(a.size / 1024)))
     sub = a[::step, ::step].ravel()
-    q25, q50, q75 = np.percentile(sub, (25, 50, 75))
-    return float((q75 - q25) / 1.349) or float(np.std(a)) or 1.0
+    med = np.median(sub)
+    return float(1.4826 * np.median(np.abs(sub - med))) or float(np.std(a)) or 1.0
 
 
 def extract_stars(image: Any, *, method: str = "adaptive", config: ExtractionConfig | None = None,

@@ -23,6 +23,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field, replace
 from functools import lru_cache
 
+import cv2
 import numpy as np
 
 from eotrack.geometry.shipboard import (
@@ -70,6 +71,8 @@ class SensorConfig:
         Faintest catalogue star rendered.
     gain_e_per_dn, bias_dn, read_noise_e
         Read-out: ``DN = bias + electrons / gain + read noise``, clipped to 0…255.
+    exposure_s
+        Exposure time (≤ frame period); the image motion during it blurs the stars.
     """
 
     shape: tuple[int, int] = (128, 128)
@@ -78,10 +81,11 @@ class SensorConfig:
     psf_sigma_px: float = 1.0
     ref_mag: float = 2.0
     ref_flux_e: float = 10000.0
-    max_mag: float = 7.0
+    max_mag: float = 6.5
     gain_e_per_dn: float = 10.0
     bias_dn: float = 8.0
     read_noise_e: float = 10.0
+    exposure_s: float = 0.1
 
     def __post_init__(self) -> None:
         if not (isinstance(self.shape, tuple) and len(self.shape) == 2):
@@ -93,6 +97,8 @@ class SensorConfig:
         for name in ("frame_rate_hz", "psf_sigma_px", "ref_flux_e", "gain_e_per_dn"):
             check_positive(getattr(self, name), name)
         check_positive(self.read_noise_e, "read_noise_e", allow_zero=True)
+        if not 0 < check_positive(self.exposure_s, "exposure_s") <= self.dt:
+            raise ValueError(f"exposure_s must lie in (0, 1/frame_rate_hz], got {self.exposure_s}")
 
     @property
     def dt(self) -> float:
@@ -181,12 +187,12 @@ def scenario(name: str, **changes: object) -> Scenario:
     check_choice(name, "name", (*SCENARIOS, "nominal"))
     presets = {
         "nominal": Scenario("nominal"),
-        "strong_light": Scenario("strong_light", sky_dn=175.0, gradient_dn=60.0),
+        "strong_light": Scenario("strong_light", sky_dn=185.0, gradient_dn=80.0),
         "cloud": Scenario("cloud", n_clouds=3, cloud_opacity=(0.6, 1.0), cloud_dn=25.0,
-                          occlusion_frames=25),
-        "sway": Scenario("sway", sea_state=4),
+                          occlusion_frames=10),
+        "sway": Scenario("sway", sea_state=5),
         "stray_light": Scenario("stray_light", stray_dn=220.0),
-        "low_snr": Scenario("low_snr", star_scale=0.15, read_noise_scale=3.0),
+        "low_snr": Scenario("low_snr", star_scale=0.06, read_noise_scale=3.0),
     }
     return replace(presets[name], **changes) if changes else presets[name]
 
@@ -296,25 +302,29 @@ def _clouds(rng: np.random.Generator, sc: Scenario, truth: np.ndarray, shape: tu
     centres = np.linspace(0.25, 0.85, sc.n_clouds) * n if sc.n_clouds else []
     for kc in centres:
         kc = float(kc + rng.uniform(-0.05, 0.05) * n)
-        a = rng.uniform(14.0, 22.0)            # semi-axis along the motion (pixels)
-        b = rng.uniform(10.0, 18.0)
+        a = rng.uniform(25.0, 35.0)            # semi-axis along the motion (pixels)
+        b = rng.uniform(20.0, 30.0)
         speed = 2 * a / sc.occlusion_frames     # pixels per frame: covers the star ~L frames
         ang = rng.uniform(0, 2 * np.pi)
         u = np.array([np.cos(ang), np.sin(ang)])
         op = rng.uniform(*sc.cloud_opacity)
         k = np.arange(n)
-        i0 = int(np.clip(round(kc), 0, n - 1))
-        centre = truth[i0] + np.outer(k - kc, u) * speed + rng.normal(0, 3, 2)
-        dx = xx[None] - centre[:, 0, None, None].astype(np.float32)
-        dy = yy[None] - centre[:, 1, None, None].astype(np.float32)
-        along = dx * u[0] + dy * u[1]
-        across = -dx * u[1] + dy * u[0]
-        d = np.sqrt((along / a) ** 2 + (across / b) ** 2)
-        cl = op / (1.0 + np.exp((d - 1.0) / 0.12))
-        opacity = 1 - (1 - opacity) * (1 - cl)
+        centre = truth.mean(axis=0) + np.outer(k - kc, u) * speed + rng.normal(0, 3, 2)
+        reach = max(a, b) * 1.3
+        on = np.flatnonzero((centre[:, 0] > -reach) & (centre[:, 0] < w + reach)
+                            & (centre[:, 1] > -reach) & (centre[:, 1] < h + reach))
+        if len(on):
+            c = centre[on].astype(np.float32)
+            dx = xx[None] - c[:, 0, None, None]
+            dy = yy[None] - c[:, 1, None, None]
+            along = (dx * u[0] + dy * u[1]) / a
+            across = (dy * u[0] - dx * u[1]) / b
+            d = np.sqrt(along * along + across * across)
+            cl = op * np.clip((1.0 - d) / 0.3 + 0.5, 0.0, 1.0)
+            opacity[on] = 1 - (1 - opacity[on]) * (1 - cl)
         ds = truth - centre
         dd = np.sqrt(((ds @ u) / a) ** 2 + ((ds @ np.array([-u[1], u[0]])) / b) ** 2)
-        at_star = 1 - (1 - at_star) * (1 - op / (1.0 + np.exp((dd - 1.0) / 0.12)))
+        at_star = 1 - (1 - at_star) * (1 - op * np.clip((1.0 - dd) / 0.3 + 0.5, 0.0, 1.0))
     return opacity, 1 - at_star
 
 
@@ -329,18 +339,41 @@ def _stray(rng: np.random.Generator, sc: Scenario, shape: tuple[int, int], shift
     yy, xx = np.mgrid[0:h, 0:w].astype(np.float32)
     out = np.empty((n, h, w), np.float32)
     ring_r = rng.uniform(0.45, 0.7) * max(h, w)
+    r_edge = dist - 0.5 * max(h, w)
     streak_dir = np.array([np.cos(ang + np.pi / 2 + rng.normal(0, 0.3)),
                            np.sin(ang + np.pi / 2 + rng.normal(0, 0.3))])
     for k in range(n):
         s = src + 0.5 * shift[k]
         dx, dy = xx - s[0], yy - s[1]
         r = np.sqrt(dx * dx + dy * dy)
-        halo = 1.0 / (1.0 + ((r - dist + 0.5 * max(h, w) * 0.0) / 25.0) ** 2)
+        halo = 1.0 / (1.0 + ((r - r_edge) / 30.0) ** 2)
         ring = 0.35 * np.exp(-0.5 * ((r - ring_r) / 2.0) ** 2)
         across = dx * streak_dir[1] - dy * streak_dir[0]
         streak = 0.25 * np.exp(-0.5 * (across / 1.5) ** 2) * np.exp(-r / (0.8 * max(h, w)))
         out[k] = sc.stray_dn * (halo + ring + streak)
     return out
+
+
+def _motion_blur(img: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """Convolve with a normalised line of length ``|v|`` pixels along ``v`` (x, y)."""
+    length = float(np.hypot(*v))
+    if length < 0.5:
+        return img
+    half = int(np.ceil(length / 2)) + 1
+    size = 2 * half + 1
+    kern = np.zeros((size, size), np.float32)
+    m = max(2, int(np.ceil(4 * length)))
+    t = np.linspace(-0.5, 0.5, m)
+    px = half + t * v[0]
+    py = half + t * v[1]
+    x0, y0 = np.floor(px).astype(int), np.floor(py).astype(int)
+    fx, fy = px - x0, py - y0
+    np.add.at(kern, (y0, x0), (1 - fx) * (1 - fy))
+    np.add.at(kern, (y0, x0 + 1), fx * (1 - fy))
+    np.add.at(kern, (y0 + 1, x0), (1 - fx) * fy)
+    np.add.at(kern, (y0 + 1, x0 + 1), fx * fy)
+    kern /= kern.sum()
+    return cv2.filter2D(img, -1, kern, borderType=cv2.BORDER_CONSTANT)
 
 
 def simulate_sequence(rng: np.random.Generator, scenario_: Scenario | str = "nominal", *,
@@ -387,12 +420,21 @@ def simulate_sequence(rng: np.random.Generator, scenario_: Scenario | str = "nom
     xy = project_to_image(v_cam, sensor.focal_px, ((w - 1) / 2, (h - 1) / 2))
     truth = xy[:, 0].copy()
     flux_e = sensor.ref_flux_e * 10 ** (-0.4 * (mags - sensor.ref_mag)) * sc.star_scale
-    stars = np.empty((n, h, w))
     inside = np.all(np.isfinite(xy), axis=2)
-    for k in range(n):
-        stars[k] = 0.0
-        render_gaussian_spots((h, w), xy[k, inside[k]], flux_e[inside[k]], sensor.psf_sigma_px,
-                              out=stars[k])
+    # all frames in one call: frames stacked vertically with a guard band against bleeding
+    pad = int(np.ceil(4 * sensor.psf_sigma_px)) + 1
+    hp = h + 2 * pad
+    tall = np.zeros((n * hp, w), np.float32)
+    kk, ss = np.nonzero(inside)
+    pts = xy[kk, ss] + np.c_[np.zeros(len(kk)), kk * hp + pad]
+    keep = (xy[kk, ss, 1] > -pad) & (xy[kk, ss, 1] < h + pad - 1)
+    render_gaussian_spots((n * hp, w), pts[keep], flux_e[ss[keep]], sensor.psf_sigma_px,
+                          out=tall)
+    stars = tall.reshape(n, hp, w)[:, pad:pad + h]
+    # motion blur: the exposure integrates the field along its image velocity (uniform over a
+    # small field), a line kernel per frame
+    vel = np.gradient(truth, axis=0) * sensor.exposure_s / sensor.dt     # pixels per exposure
+    stars = np.stack([_motion_blur(stars[k], vel[k]) for k in range(n)])
     gain = sensor.gain_e_per_dn
     sky = np.full((h, w), sc.sky_dn * gain, np.float32)
     if sc.gradient_dn > 0:

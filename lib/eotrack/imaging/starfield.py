@@ -23,8 +23,8 @@ from eotrack.validation import (
 from .psf import render_gaussian_spots
 
 __all__ = [
-    "StarFieldConfig",
     "StarField",
+    "StarFieldConfig",
     "catalogue_stars_in_view",
     "render_star_image",
     "star_count_slope",

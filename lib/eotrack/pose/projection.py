@@ -184,5 +184,4 @@ def rotation_error_deg(R_est: Any, R_true: Any) -> float:
     """Angle (degrees) of the rotation ``R_est R_trueᵀ`` — the attitude error."""
     R_est = check_rotation(R_est, "R_est", atol=1e-5)
     R_true = check_rotation(R_true, "R_true", atol=1e-5)
-    c = (np.trace(R_est @ R_true.T) - 1.0) / 2.0
-    return float(np.degrees(np.arccos(np.clip(c, -1.0, 1.0))))
+    return float(np.degrees(Rotation.from_matrix(R_est @ R_true.T).magnitude()))

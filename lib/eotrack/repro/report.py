@@ -35,6 +35,9 @@ class Reproduction:
         Markdown paragraphs for the report (setup, deviations).
     settings
         The trial counts and parameters used (written to the report).
+    data
+        The experiment's own result objects (not written), so a notebook can reuse a run
+        instead of repeating it.
     """
 
     slug: str
@@ -44,6 +47,7 @@ class Reproduction:
     figures: dict[str, Any] = field(default_factory=dict)
     text: str = ""
     settings: dict[str, Any] = field(default_factory=dict)
+    data: dict[str, Any] = field(default_factory=dict)
 
     @property
     def scorecard(self) -> pd.DataFrame:

@@ -54,7 +54,8 @@ def _prob(value: Any, name: str) -> np.ndarray:
     if np.any((arr < 0) | (arr > 1)):
         bad = arr[(arr < 0) | (arr > 1)].ravel()[0]
         raise ValueError(f"{name} must lie in [0, 1], got {bad!r}")
-    return arr
+    # subnormal probabilities overflow scipy's binomial pmf; they are 0 to double precision
+    return np.where(arr < 1e-290, 0.0, arr)
 
 
 def _ints(value: Any, name: str, *, lo: int, hi: int | None = None,

@@ -601,8 +601,8 @@ class ConfidenceConfig:
     forgetting: float = 0.97
     adaptive_noise: bool = True
     safeguard: bool = True
-    r_bounds: tuple[float, float] = (0.01, 25.0)
-    q_bounds_ratio: tuple[float, float] = (0.25, 16.0)
+    r_bounds: tuple[float, float] = (0.01, 1.0)
+    q_bounds_ratio: tuple[float, float] = (0.25, 100.0)
     q_growth: float = 0.5
     q_growth_max: float = 20.0
 
@@ -775,12 +775,14 @@ class TrackResult:
 
 
 def track_nearest(filt: KalmanFilter, detections: Sequence[np.ndarray], *,
-                  gate_px: float = 10.0,
+                  gate_px: float = 10.0, gate_sigma: float | None = 4.0,
                   c_img: Sequence[np.ndarray] | None = None) -> TrackResult:
     """Track one star through per-frame detections with nearest-neighbour association.
 
     At each frame the filter predicts; the detection nearest to the predicted position within
-    ``gate_px`` (Euclidean, pixels) is handed to ``filt.update`` with its image confidence; no
+    the gate is handed to ``filt.update`` with its image confidence. The gate radius is
+    ``max(gate_px, gate_sigma · sqrt(λ_max(S)))`` (pixels; ``S`` the innovation covariance), so
+    it opens while the star is hidden and the prediction becomes uncertain; no
     detection in the gate means a prediction-only frame. A sequence in which the star is never
     detected is a valid input: the result is pure prediction from ``x0`` (all modes
     ``PREDICT``, covariances growing).
@@ -792,7 +794,9 @@ def track_nearest(filt: KalmanFilter, detections: Sequence[np.ndarray], *,
     detections
         One ``(n_i, 2)`` array of centroids (x, y) per frame.
     gate_px
-        Association radius (pixels, > 0).
+        Smallest association radius (pixels, > 0).
+    gate_sigma
+        Gate in standard deviations of the innovation (``None``: fixed radius ``gate_px``).
     c_img
         One ``(n_i,)`` array of image confidences per frame (default: all 1).
 
@@ -802,7 +806,8 @@ def track_nearest(filt: KalmanFilter, detections: Sequence[np.ndarray], *,
     """
     if not isinstance(filt, KalmanFilter):
         raise TypeError(f"filt must be a KalmanFilter, got {type(filt).__name__}")
-    gate = check_positive(gate_px, "gate_px")
+    gate0 = check_positive(gate_px, "gate_px")
+    gs = None if gate_sigma is None else check_positive(gate_sigma, "gate_sigma")
     n = len(detections)
     if c_img is not None and len(c_img) != n:
         raise ValueError(f"c_img must have one entry per frame ({n}), got {len(c_img)}")
@@ -825,12 +830,16 @@ def track_nearest(filt: KalmanFilter, detections: Sequence[np.ndarray], *,
             pp = H @ xp
             dist2 = np.sum((det - pp) ** 2, axis=1)
             j = int(np.argmin(dist2))
-            if dist2[j] <= gate * gate:
+            S = filt.innovation_covariance()
+            g2 = gate0 * gate0
+            if gs is not None:
+                g2 = max(g2, gs * gs * float(np.linalg.eigvalsh(S)[-1]))
+            if dist2[j] <= g2:
                 z = det[j]
                 ci = float(c_img[k][j]) if c_img is not None else 1.0
                 zs[k] = z
                 innov[k] = z - pp
-                Ss[k] = filt.innovation_covariance()
+                Ss[k] = S
         modes[k] = filt.update(z, ci)
         if filt.adaptive and z is not None:
             conf[k] = filt.last_confidence

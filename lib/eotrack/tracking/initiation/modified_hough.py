@@ -205,7 +205,12 @@ class _Engine:
                 f"{cfg.max_cells}); use larger cells d_rho/d_theta_deg/d_v or a narrower "
                 f"velocity gate, or shift the detections closer to the origin")
         self.acc = np.zeros(n_cells, dtype=np.uint32)
-        self.available = [np.ones(len(x), dtype=bool) for x in xys]
+        sizes = [len(x) for x in xys]
+        self.off = np.concatenate([[0], np.cumsum(sizes)]).astype(np.int64)
+        self.avail_flat = np.ones(int(self.off[-1]), dtype=bool)
+        self.available = [self.avail_flat[self.off[f]:self.off[f + 1]] for f in range(len(xys))]
+        self.xy_flat = np.concatenate([x for x in xys]) if sizes and self.off[-1] else \
+            np.zeros((0, 2))
         self.fw = [Frame(float(t), x) for t, x in zip(times, xys)]
         self.flag = np.zeros(n_cells, dtype=bool)
         self.cleared: dict[int, int] = {}
@@ -377,8 +382,15 @@ class _Engine:
             return out
         cands = np.unique(np.stack([-np.concatenate(cand_p).astype(np.int64), t_all,
                                     np.concatenate(cand_t2)], 1), axis=0)
-        sub = self._pairs_in(k, np.unique(cands[:, 1:][cands[:, 1:] >= 0]))
+        cells_all = np.unique(cands[:, 1:][cands[:, 1:] >= 0])
+        sub = self._pairs_in(k, cells_all)
         lo = k - self.m + 1
+        # vectorised pre-check: frames of still-available points per cell, union per candidate
+        cm = self._cell_masks(sub, cells_all, lo)
+        m1 = cm[np.searchsorted(cells_all, cands[:, 1])]
+        m2 = np.where(cands[:, 2] >= 0,
+                      cm[np.searchsorted(cells_all, np.maximum(cands[:, 2], 0))], 0)
+        cands = cands[pop(m1 | m2) >= need]
         for _negp, t, t2 in cands:
             cells = [int(t)] if t2 < 0 else [int(t), int(t2)]
             if any(self.cleared.get(c, -1) == k for c in cells):
@@ -388,7 +400,9 @@ class _Engine:
                 continue
             if t2 >= 0 and not self._line_close(sub, int(t), int(t2), lo):
                 continue
-            hits = self._choose_hits(pts)
+            hits = self._choose_hits(pts, int(t))
+            if len(hits) < need:
+                continue
             rho, theta, v, s = self._centre(int(t))
             self.handoff.confirm(hits, k, self.fw,
                                  info={"method": "modified_hough", "cells": cells,
@@ -404,7 +418,10 @@ class _Engine:
         return out
 
     def _pairs_in(self, k: int, cells: np.ndarray) -> np.ndarray:
-        """Stored pairs falling in ``cells``: rows ``(key, f_a, d_a, f_b, d_b)``."""
+        """Live stored pairs falling in ``cells``, sorted by cell: rows ``(key, f_a, d_a, f_b, d_b)``.
+
+        A pair is dead when its cell was cleared (by a confirmation) at or after its frame.
+        """
         self.flag[cells] = True
         rows = []
         for cur, st in self.pairs.items():
@@ -412,43 +429,111 @@ class _Engine:
             if np.any(sel):
                 key = st["key"][sel]
                 born = np.full(len(key), cur, dtype=np.int64)
-                # pairs older than the last clearing of their cell are dead
-                dead = np.array([self.cleared.get(int(q), -1) >= cur for q in key], dtype=bool)
-                rows.append(np.stack([key, st["fa"][sel], st["da"][sel], born, st["db"][sel]],
-                                     1)[~dead])
+                rows.append(np.stack([key, st["fa"][sel], st["da"][sel], born, st["db"][sel]], 1))
         self.flag[cells] = False
-        return np.concatenate(rows) if rows else np.zeros((0, 5), dtype=np.int64)
+        if not rows:
+            return np.zeros((0, 5), dtype=np.int64)
+        sub = np.concatenate(rows)
+        if self.cleared:
+            ck = np.fromiter(self.cleared.keys(), dtype=np.int64)
+            cv = np.fromiter(self.cleared.values(), dtype=np.int64)
+            o = np.argsort(ck)
+            ck, cv = ck[o], cv[o]
+            pos = np.minimum(np.searchsorted(ck, sub[:, 0]), len(ck) - 1)
+            dead = (ck[pos] == sub[:, 0]) & (cv[pos] >= sub[:, 3])
+            sub = sub[~dead]
+        return sub[np.argsort(sub[:, 0], kind="stable")]
+
+    def _cell_masks(self, sub: np.ndarray, cells: np.ndarray, lo: int) -> np.ndarray:
+        """Per cell of ``cells``, the bit mask of window frames with still-available points."""
+        out = np.zeros(len(cells), dtype=np.uint32)
+        if len(sub) == 0:
+            return out
+        pos = np.searchsorted(cells, sub[:, 0])
+        for fc, dc in ((1, 2), (3, 4)):
+            f = sub[:, fc]
+            ok = (f >= lo) & self.avail_flat[self.off[f] + sub[:, dc]]
+            np.bitwise_or.at(out, pos[ok], (np.uint32(1) << (f[ok] % _BITS)).astype(np.uint32))
+        return out
 
     def _points_of(self, sub: np.ndarray, cells: list[int], lo: int) -> np.ndarray:
         """Distinct still-available ``(frame, detection)`` points of Q(cells) in the window."""
-        rows = sub[np.isin(sub[:, 0], cells)]
-        pts = np.concatenate([rows[:, 1:3], rows[:, 3:5]])
-        if len(pts) == 0:
-            return np.zeros((0, 2), dtype=np.int64)
-        pts = np.unique(pts, axis=0)
-        pts = pts[pts[:, 0] >= lo]
-        keep = np.array([self.available[f][d] for f, d in pts], dtype=bool)
-        return pts[keep].reshape(-1, 2)
+        parts = []
+        for c in cells:
+            i0, i1 = np.searchsorted(sub[:, 0], [c, c + 1])
+            parts.append(sub[i0:i1])
+        rows = np.concatenate(parts)
+        f = np.concatenate([rows[:, 1], rows[:, 3]])
+        d = np.concatenate([rows[:, 2], rows[:, 4]])
+        g = np.unique(self.off[f] + d)  # global detection ids, unique
+        g = g[self.avail_flat[g]]
+        fr = np.searchsorted(self.off, g, side="right") - 1
+        keep = fr >= lo
+        return np.stack([fr[keep], g[keep] - self.off[fr[keep]]], 1)
 
-    def _choose_hits(self, pts: np.ndarray) -> list[tuple[int, int]]:
-        """One detection per frame: the one nearest a constant-velocity fit of all points."""
+    def _choose_hits(self, pts: np.ndarray, cell: int) -> list[tuple[int, int]]:
+        """One detection per frame forming a constant-velocity track consistent with ``cell``.
+
+        First the detection nearest a least-squares constant-velocity fit of all points in each
+        frame; if that track is not consistent (every consecutive pair of hits must map to the
+        cell or one of its 26 neighbours), the combinations are enumerated (at most 256).
+        Returns ``[]`` when no consistent choice covers ``m − 1`` frames.
+        """
+        frames_u, counts = np.unique(pts[:, 0], return_counts=True)
         t = self.times[pts[:, 0]]
-        xy = np.array([self.xys[f][d] for f, d in pts]).reshape(-1, 2)
+        xy = self.xy_flat[self.off[pts[:, 0]] + pts[:, 1]]
         pm, v = fit_constant_velocity(t, xy)
         res = np.hypot(*(xy - (pm + np.outer(t - t.mean(), v))).T)
         order = np.lexsort((pts[:, 1], res, pts[:, 0]))
-        hits, seen = [], set()
-        for i in order:
-            f = int(pts[i, 0])
-            if f not in seen:
-                seen.add(f)
-                hits.append((f, int(pts[i, 1])))
-        return hits
+        first = order[np.r_[True, pts[order[1:], 0] != pts[order[:-1], 0]]]
+        if self._consistent(pts[first], cell):
+            return [(int(f), int(d)) for f, d in pts[first]]
+        if np.prod(counts.astype(float)) > 256:
+            return []
+        groups = [np.flatnonzero(pts[:, 0] == f) for f in frames_u]
+        best, best_cost = [], np.inf
+        import itertools
+
+        # all frames first, then subsets dropping one frame (m − 1 frames suffice)
+        options = [groups]
+        if len(groups) > self.need:
+            options += [groups[:i] + groups[i + 1:] for i in range(len(groups))]
+        for gs in options:
+            for combo in itertools.product(*gs):
+                idx = np.array(combo)
+                if self._consistent(pts[idx], cell):
+                    cost = float(res[idx].sum())
+                    if cost < best_cost:
+                        best, best_cost = [(int(f), int(d)) for f, d in pts[idx]], cost
+            if best:
+                break
+        return best
+
+    def _consistent(self, hits: np.ndarray, cell: int) -> bool:
+        """Consecutive hits (sorted by frame) all map to ``cell`` or a 26-neighbour of it."""
+        if len(hits) < 2:
+            return False
+        xy = self.xy_flat[self.off[hits[:, 0]] + hits[:, 1]]
+        dt = np.diff(self.times[hits[:, 0]])
+        rho, theta, v, s = _pair_params(xy[:-1], xy[1:], dt)
+        if np.any(v < self.cfg.v_min) or np.any(v > self.cfg.v_max):
+            return False
+        ir, it, iv, is_ = self._indices(rho, theta, v, s)
+        cr, ct, cv, cs = self._unkey(int(cell))
+        dth = np.abs(it - ct)
+        wrap = dth > self.n_theta // 2
+        # across the θ wrap the same line has ρ → −ρ and s reversed
+        ir_w = np.where(wrap, np.floor(-(ir - self.r_off + 0.5) * self.cfg.d_rho
+                                       / self.cfg.d_rho).astype(np.int64) + self.r_off, ir)
+        is_w = np.where(wrap, 1 - is_, is_)
+        dth = np.where(wrap, self.n_theta - dth, dth)
+        return bool(np.all((np.abs(ir_w - cr) <= 1) & (dth <= 1) & (np.abs(iv - cv) <= 1)
+                           & (is_w == cs)))
 
     def _line_close(self, sub: np.ndarray, t: int, t2: int, lo: int) -> bool:
         """Is the least-squares line through Q(t) within one cell (ρ, θ) of t2's centre?"""
         pts = self._points_of(sub, [t], lo)
-        xy = np.array([self.xys[f][d] for f, d in pts]).reshape(-1, 2)
+        xy = self.xy_flat[self.off[pts[:, 0]] + pts[:, 1]]
         try:
             rho, theta = line_through_points(xy)
         except ValueError:

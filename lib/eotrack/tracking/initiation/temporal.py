@@ -83,7 +83,8 @@ class TemporalContinuityInitiator:
     Attributes
     ----------
     stats
-        After :meth:`initiate`: ``hypotheses`` opened, ``confirmed`` tracks.
+        After :meth:`initiate`: ``hypotheses`` opened, ``confirmed`` tracks,
+        ``opened_per_frame`` (hypotheses opened in each frame).
     """
 
     def __init__(self, config: TemporalTestConfig | None = None) -> None:
@@ -125,7 +126,7 @@ class TemporalContinuityInitiator:
         tentative: list[_Hyp] = []
         active: list[_Hyp] = []
         done: list[_Hyp] = []
-        opened = 0
+        opened = np.zeros(len(fr), dtype=int)
         for k, f in enumerate(fr):
             pts = f.xy
             used = np.zeros(len(pts), dtype=bool)
@@ -174,10 +175,11 @@ class TemporalContinuityInitiator:
                     active.append(h)
                 else:
                     tentative.append(h)
-                opened += 1
+                opened[k] += 1
         done.extend(active)
         done.sort(key=lambda h: (h.confirmed_at, h.start))
-        self.stats = {"hypotheses": opened, "confirmed": len(done)}
+        self.stats = {"hypotheses": int(opened.sum()), "confirmed": len(done),
+                      "opened_per_frame": opened.tolist()}
         return [Track(hits=list(h.hits), confirmed_at=h.confirmed_at,
                       info={"n_hits": len(h.hits), "start_frame": h.start}) for h in done]
 

@@ -1,0 +1,68 @@
+"""Li et al. (2008) hypothesis-testing track initiation: claims versus results (quick run)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from eotrack.experiments import track_init_ht as exp
+from eotrack.repro import Status, load_claims
+
+EXPECTED = {
+    "track_init.li_fig1": Status.PARTIAL,
+    "track_init.li_fig2": Status.PARTIAL,
+    "track_init.li_experiment": Status.PARTIAL,
+}
+
+
+@pytest.fixture(scope="module")
+def rep():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    r = exp.reproduce(quick=True)
+    yield r
+    plt.close("all")
+
+
+def test_one_row_per_claim(rep):
+    ids = [c.claim for c in rep.claims]
+    assert sorted(ids) == sorted(load_claims("track_init_ht"))
+    assert len(ids) == len(set(ids))
+
+
+@pytest.mark.parametrize("cid", sorted(EXPECTED))
+def test_status(rep, cid):
+    row = next(c for c in rep.claims if c.claim == cid)
+    assert row.status is EXPECTED[cid], row.ours + " | " + row.note
+
+
+def test_fig1_numbers(rep):
+    t = rep.tables["Fig. 1 (formulas and Monte Carlo, S <= 8)"]
+    s3 = t[(t["SNR"] == 2) & (t["S"] == 3)].iloc[0]
+    # eq. (7) is far above the exact count, which the Monte Carlo follows
+    assert s3["P_DA eq.7 (paper)"] > 0.95
+    assert 0.03 < s3["P_DA exact"] < 0.08
+    assert abs(s3["P_DA MC"] - s3["P_DA exact"]) < 0.005
+
+
+def test_fig2_numbers(rep):
+    t = rep.tables["Fig. 2 (T_h = 5 slice)"]
+    assert np.all(t["P_DS eq.12 (T_h=5)"] >= t["P_DT eq.13 (T_h=5)"])
+    np.testing.assert_allclose(t["P_DS MC (T_h=5)"], t["P_DS eq.12 (T_h=5)"], atol=0.02)
+
+
+def test_sequence_numbers(rep):
+    t = rep.tables["Sequences: targets, measured vs formulas"]
+    main, curved = t.iloc[0], t.iloc[1]
+    assert main["pixel P_D (3x3 core)"] > 0.9
+    assert main["P_DA measured"] > 0.9 and main["mean coverage"] > 0.9
+    assert curved["P_DA measured"] < 0.2  # SNR 2: the 5x5 window rarely reaches S = 7
+    assert curved["P_DA eq.7 (paper)"] > 0.9  # ... though eq. (7) says it should
+    sweep = rep.tables["Fig. 7 target: recovery vs SNR"]
+    assert sweep["recovered (coverage >= 0.5)"].iloc[-1] >= 0.5
+    pfa = rep.tables["Sequences: P_FA vs S"]
+    assert 0.025 < float(rep.claims[2].ours.split("measured ")[1].split(";")[0]) < 0.04
+    assert pfa["P_FA measured"].iloc[0] > 0.1

@@ -1,0 +1,63 @@
+"""CFAR segmentation with a robust tile background."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from eotrack.imaging.cfar import CfarResult, cfar_segment, cfar_threshold, tile_background_noise
+
+
+def test_false_alarm_rate_on_white_noise():
+    rng = np.random.default_rng(0)
+    img = 100 + 5 * rng.standard_normal((256, 256))
+    g = cfar_segment(img, 0.03)
+    assert g.dtype == np.uint8 and set(np.unique(g)) <= {0, 1}
+    assert abs(g.mean() - 0.03) < 0.004
+
+
+def test_ramp_background_is_removed():
+    rng = np.random.default_rng(1)
+    yy, xx = np.mgrid[0:128, 0:160]
+    img = 50 + 0.5 * xx + 0.3 * yy + rng.standard_normal((128, 160))
+    bg, sig = tile_background_noise(img, 16)
+    inner = (slice(16, -16), slice(16, -16))
+    assert np.abs(bg - (50 + 0.5 * xx + 0.3 * yy))[inner].max() < 0.6
+    assert np.median(sig) == pytest.approx(1.0, rel=0.1)
+    g = cfar_segment(img, 0.01)
+    assert abs(g[inner].mean() - 0.01) < 0.004
+
+
+def test_bright_spot_detected_and_full_result():
+    rng = np.random.default_rng(2)
+    img = rng.standard_normal((64, 64))
+    img[30:33, 30:33] += 10
+    res = cfar_segment(img, 0.001, full=True)
+    assert isinstance(res, CfarResult)
+    assert res.binary[30:33, 30:33].all()
+    np.testing.assert_allclose(cfar_threshold(img, 0.001), res.threshold)
+
+
+def test_global_tile_and_uneven_tiles():
+    rng = np.random.default_rng(3)
+    img = rng.standard_normal((50, 70))
+    bg, sig = tile_background_noise(img, None)
+    assert np.ptp(bg) == 0 and np.ptp(sig) == 0
+    bg, sig = tile_background_noise(img, 16)  # 50 and 70 are not multiples of 16
+    assert bg.shape == img.shape and np.all(sig > 0)
+
+
+def test_bad_input():
+    img = np.zeros((16, 16))
+    with pytest.raises(ValueError, match="p_f"):
+        cfar_segment(img, 1.5)
+    with pytest.raises(ValueError, match="p_f"):
+        cfar_threshold(img, 0.0)
+    with pytest.raises(ValueError, match="image"):
+        cfar_segment(np.zeros((3, 16, 16)), 0.03)
+    with pytest.raises(ValueError, match="image"):
+        tile_background_noise(np.zeros(16))
+    with pytest.raises(ValueError, match="tile"):
+        tile_background_noise(img, 2)
+    with pytest.raises(ValueError, match="image"):
+        cfar_segment(np.full((8, 8), np.nan), 0.03)

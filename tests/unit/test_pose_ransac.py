@@ -1,0 +1,132 @@
+"""Unit tests for eotrack.pose.ransac_pose."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from eotrack.pose import (
+    RansacConfig,
+    attitude_matrix,
+    best_initial_pose,
+    intrinsic_matrix,
+    project_points,
+    ransac_pose_dlt,
+    ransac_pose_opencv,
+    refine_pose,
+    refine_pose_opencv,
+    reprojection_errors,
+    rotation_error_deg,
+)
+
+K0 = intrinsic_matrix(1000.0)  # pixels
+R0 = attitude_matrix([15, 20, 10])
+T0 = np.array([1.0, 1.2, 10.0])
+
+
+def _scene(seed=0, n=150, frac=0.1, sigma=0.3, planar=True):
+    rng = np.random.default_rng(seed)
+    X = rng.uniform(-1, 1, (n, 3))
+    if planar:
+        X[:, 2] = -1.0
+    u = project_points(X, R0, T0, K0) + rng.normal(size=(n, 2)) * sigma
+    bad = rng.permutation(n)[: int(frac * n)]
+    u[bad] += rng.uniform(20, 60, (len(bad), 2)) * rng.choice([-1, 1], (len(bad), 2))
+    gross = np.zeros(n, bool)
+    gross[bad] = True
+    return X, u, gross
+
+
+@pytest.mark.parametrize("planar", [True, False])
+def test_ransac_dlt_removes_gross_errors(planar):
+    X, u, gross = _scene(planar=planar)
+    res = ransac_pose_dlt(X, u, K0, np.random.default_rng(1), RansacConfig(inlier_threshold_px=2.0))
+    assert res.success and res.n_draws >= 1
+    assert not np.any(res.inliers & gross)
+    assert res.n_inliers >= 0.95 * (~gross).sum()
+    assert rotation_error_deg(res.R, R0) < 0.5
+    assert np.linalg.norm(res.t - T0) < 0.05
+
+
+def test_ransac_dlt_noise_free_exact():
+    X, u, _ = _scene(sigma=0.0, frac=0.0)
+    res = ransac_pose_dlt(X, u, K0, np.random.default_rng(2))
+    np.testing.assert_allclose(res.R, R0, atol=1e-8)
+    np.testing.assert_allclose(res.t, T0, atol=1e-7)
+    assert res.n_draws == 1 and res.inliers.all()
+
+
+def test_ransac_failure_is_reported_not_raised():
+    X, _, _ = _scene()
+    u = np.random.default_rng(3).uniform(-500, 500, (len(X), 2))  # nothing consistent
+    res = ransac_pose_dlt(X, u, K0, np.random.default_rng(4),
+                          RansacConfig(inlier_threshold_px=0.5, max_draws=40))
+    assert not res.success and res.R is None and res.n_draws == 40
+    assert res.n_inliers == 0 and "discarded" in res.message
+
+
+def test_ransac_same_result_for_any_batch_size():
+    X, u, _ = _scene(seed=5, sigma=1.0)
+    a = ransac_pose_dlt(X, u, K0, np.random.default_rng(6), RansacConfig(batch=1, refit=False,
+                                                                        min_inlier_ratio=0.85))
+    b = ransac_pose_dlt(X, u, K0, np.random.default_rng(6), RansacConfig(batch=1, refit=False,
+                                                                        min_inlier_ratio=0.85))
+    assert a.n_draws == b.n_draws and np.array_equal(a.inliers, b.inliers)
+
+
+def test_opencv_wrapper_and_refinement():
+    X, u, gross = _scene(seed=7)
+    res = ransac_pose_opencv(X, u, K0, threshold_px=2.0)
+    assert res.success and not np.any(res.inliers & gross)
+    assert rotation_error_deg(res.R, R0) < 0.5
+    Ri, ti = refine_pose_opencv(X[res.inliers], u[res.inliers], K0, res.R, res.t)
+    Rm, tm = refine_pose(X[res.inliers], u[res.inliers], K0, res.R, res.t)
+    np.testing.assert_allclose(Ri, Rm, atol=1e-6)
+    np.testing.assert_allclose(ti, tm, atol=1e-5)
+
+
+def test_refine_pose_converges_from_perturbed_start():
+    X, u, _ = _scene(sigma=0.0, frac=0.0, planar=False)
+    R1 = attitude_matrix([2, -1, 3]) @ R0
+    R, t = refine_pose(X, u, K0, R1, T0 + 0.3, sigma_px=np.full(len(X), 0.5))
+    np.testing.assert_allclose(R, R0, atol=1e-9)
+    np.testing.assert_allclose(t, T0, atol=1e-8)
+    assert reprojection_errors(X, u, R, t, K0).max() < 1e-8
+
+
+def test_best_initial_pose_noise_free():
+    X, u, _ = _scene(sigma=0.0, frac=0.0)
+    R, t = best_initial_pose(X, u, K0)
+    np.testing.assert_allclose(R, R0, atol=1e-8)
+
+
+def test_bad_inputs():
+    X, u, _ = _scene()
+    rng = np.random.default_rng(0)
+    with pytest.raises(ValueError, match="at least 6"):
+        ransac_pose_dlt(X[:5], u[:5], K0, rng)
+    with pytest.raises(ValueError, match="collinear"):
+        line = np.outer(np.linspace(-1, 1, 10), [1.0, 0.5, 0.2])
+        ransac_pose_dlt(line, u[:10], K0, rng)
+    with pytest.raises(TypeError, match="rng must be"):
+        ransac_pose_dlt(X, u, K0, 42)
+    with pytest.raises(TypeError, match="config must be"):
+        ransac_pose_dlt(X, u, K0, rng, config={})
+    with pytest.raises(ValueError, match="inlier_threshold_px"):
+        RansacConfig(inlier_threshold_px=-1.0)
+    with pytest.raises(ValueError, match="sample_size"):
+        RansacConfig(sample_size=4)
+    with pytest.raises(ValueError, match="method must be one of"):
+        ransac_pose_opencv(X, u, K0, method="p3p")
+    with pytest.raises(ValueError, match="threshold_px"):
+        ransac_pose_opencv(X, u, K0, threshold_px=0.0)
+    with pytest.raises(ValueError, match="R0 must be a rotation"):
+        refine_pose(X, u, K0, 2 * np.eye(3), T0)
+    with pytest.raises(ValueError, match="sigma_px must be > 0"):
+        refine_pose(X, u, K0, R0, T0, sigma_px=-1.0)
+    with pytest.raises(ValueError, match="same length"):
+        refine_pose_opencv(X, u[:-1], K0, R0, T0)
+    with pytest.raises(ValueError, match="same length"):
+        reprojection_errors(X, u[:-1], R0, T0, K0)
+    with pytest.raises(ValueError, match="at least 6"):
+        best_initial_pose(X[:4], u[:4], K0)
