@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-
 from eotrack.experiments import track_init_ht as exp
 from eotrack.repro import Status, load_claims
 
@@ -66,3 +65,11 @@ def test_sequence_numbers(rep):
     pfa = rep.tables["Sequences: P_FA vs S"]
     assert 0.025 < float(rep.claims[2].ours.split("measured ")[1].split(";")[0]) < 0.04
     assert pfa["P_FA measured"].iloc[0] > 0.1
+
+
+def test_initiator_against_formulas(rep):
+    t = rep.tables["Beyond: the initiator against eqs. (12)-(13)"].set_index("P_F")
+    lo, hi = t.iloc[0], t.iloc[-1]
+    assert abs(lo["track with >= T_h target points"] - lo["P_DT eq.13"]) < 0.02
+    # nearest-neighbour association loses the target among dense false alarms
+    assert hi["track with >= T_h target points"] < hi["P_DT eq.13"] - 0.15

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-
 from eotrack.imaging.cfar import CfarResult, cfar_segment, cfar_threshold, tile_background_noise
 
 

@@ -4,8 +4,6 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from scipy.stats import norm
-
 from eotrack.imaging.dim_targets import (
     DimSequenceConfig,
     DimTarget,
@@ -16,6 +14,7 @@ from eotrack.imaging.dim_targets import (
     simulate_dim_sequence,
     straight_path,
 )
+from scipy.stats import norm
 
 
 def test_paths():

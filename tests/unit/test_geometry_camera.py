@@ -3,7 +3,6 @@
 import cv2
 import numpy as np
 import pytest
-
 from eotrack.geometry import (
     PinholeCamera,
     check_intrinsics,

@@ -2,11 +2,9 @@
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
-from hypothesis import strategies as st
-
 from eotrack.geometry import (
     check_rotation,
+    dcm_321,
     euler_321_from_matrix,
     look_at,
     rot_x,
@@ -14,6 +12,8 @@ from eotrack.geometry import (
     rot_z,
     rotation_321,
 )
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 angle = st.floats(-3.0, 3.0)
 
@@ -41,10 +41,21 @@ def test_euler_roundtrip(y, p, r):
     assert np.allclose(rotation_321(*euler_321_from_matrix(R)), R, atol=1e-9)
 
 
+def test_paper_order_versus_conventional_321():
+    from scipy.spatial.transform import Rotation
+
+    y, p, r = 0.3, -0.4, 1.1
+    # eq. (4) as printed = frame turned about x, then y, then z (a 1-2-3 frame sequence)
+    assert np.allclose(rotation_321(y, p, r), Rotation.from_euler("XYZ", [r, p, y]).as_matrix().T)
+    # the conventional aerospace 3-2-1 reference -> body matrix
+    assert np.allclose(dcm_321(y, p, r), Rotation.from_euler("ZYX", [y, p, r]).as_matrix().T)
+    assert np.allclose(dcm_321(y, 0, 0), rotation_321(y, 0, 0))
+
+
 def test_vectorised_shapes():
     R = rotation_321(np.zeros(5), np.ones(5), np.full(5, 0.2))
     assert R.shape == (5, 3, 3)
-    y, p, r = euler_321_from_matrix(R)
+    _y, p, _r = euler_321_from_matrix(R)
     assert np.allclose(p, 1.0)
 
 

@@ -4,11 +4,10 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from eotrack.tracking import hypothesis as hyp
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from scipy.stats import binom
-
-from eotrack.tracking import hypothesis as hyp
 
 probs = st.floats(0.0, 1.0, allow_nan=False)
 odd = st.sampled_from([1, 3, 5, 7])

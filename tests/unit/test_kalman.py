@@ -4,9 +4,6 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
-from hypothesis import strategies as st
-
 from eotrack.tracking.kalman import (
     ConfidenceConfig,
     ConfidenceKalmanFilter,
@@ -26,6 +23,8 @@ from eotrack.tracking.kalman import (
     track_nearest,
     white_acceleration_noise,
 )
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 DT = 0.2
 
@@ -168,7 +167,7 @@ def test_covariances_stay_spd_long_run(seed):
 def test_sage_husa_weight_and_safeguard():
     assert sage_husa_weight(0, 0.97) == pytest.approx(1.0)
     assert sage_husa_weight(10_000, 0.97) == pytest.approx(0.03)
-    F, H, Q, R, x0, P0 = _model()
+    F, H, Q, R, _, P0 = _model()
     P = P0.copy()
     K = P @ H.T @ np.linalg.inv(H @ P @ H.T + R)
     # a tiny innovation makes e e^T - H P H^T negative definite

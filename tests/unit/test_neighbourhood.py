@@ -5,16 +5,15 @@ from __future__ import annotations
 import cv2
 import numpy as np
 import pytest
-from hypothesis import given, settings
-from hypothesis import strategies as st
-from scipy.ndimage import uniform_filter
-
 from eotrack.imaging.neighbourhood import (
     candidate_frames,
     cluster_candidates,
     cluster_mask,
     neighbourhood_count,
 )
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from scipy.ndimage import uniform_filter
 
 
 @settings(max_examples=40, deadline=None)
@@ -23,6 +22,7 @@ from eotrack.imaging.neighbourhood import (
 def test_count_matches_scipy_and_opencv(seed, w, h, wd):
     g = (np.random.default_rng(seed).random((h, wd)) < 0.3).astype(np.uint8)
     d = neighbourhood_count(g, w)
+    np.testing.assert_array_equal(d, neighbourhood_count(g, w, method="sat"))
     ref = np.rint(uniform_filter(g.astype(float), w, mode="constant") * w * w).astype(int)
     np.testing.assert_array_equal(d, ref)
     cvref = cv2.boxFilter(g.astype(np.float32), -1, (w, w), normalize=False,
@@ -34,6 +34,8 @@ def test_count_brute_force_and_stack():
     rng = np.random.default_rng(0)
     g = rng.random((3, 12, 9)) < 0.4
     d = neighbourhood_count(g, 5)
+    assert d.dtype == np.int32
+    np.testing.assert_array_equal(d, neighbourhood_count(g, 5, method="sat"))
     pad = np.pad(g, ((0, 0), (2, 2), (2, 2)))
     for k in range(3):
         for i in range(12):
@@ -71,7 +73,7 @@ def test_candidate_frames_pipeline():
     imgs[:, 14:17, 14:17] += 8
     frames, g, c = candidate_frames(imgs, np.arange(3.0), 0.03, 5, 7, keep_masks=True)
     assert len(frames) == 3 and g.shape == c.shape == imgs.shape
-    for t, xy in frames:
+    for _t, xy in frames:
         assert np.min(np.abs(xy - 15).max(axis=1)) <= 1
 
 
@@ -83,6 +85,8 @@ def test_bad_input():
         neighbourhood_count(g, 0)
     with pytest.raises(ValueError, match="binary"):
         neighbourhood_count(np.zeros(8), 3)
+    with pytest.raises(ValueError, match="method"):
+        neighbourhood_count(g, 3, method="fft")
     with pytest.raises(ValueError, match="binary"):
         neighbourhood_count(np.full((4, 4), 2), 3)
     with pytest.raises(ValueError, match="s"):

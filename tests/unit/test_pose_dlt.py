@@ -4,9 +4,6 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
-from hypothesis import strategies as st
-
 from eotrack.pose import (
     attitude_matrix,
     dlt_pose,
@@ -16,6 +13,8 @@ from eotrack.pose import (
     plane_frame,
     project_points,
 )
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 K0 = intrinsic_matrix(10.0)
 T0 = np.array([1.0, 1.2, 10.0])
@@ -45,7 +44,7 @@ def test_batch_flags_degenerate_samples():
     u = np.stack([project_points(x, R, T0, K0) for x in X])
     _, _, ok = dlt_pose_batch(X, u, K0, planar=False)
     assert ok.tolist() == [True, False, False]
-    Rb, tb, ok = dlt_pose_batch(X, u, K0)
+    Rb, _tb, ok = dlt_pose_batch(X, u, K0)
     assert ok.tolist() == [True, False, True]
     np.testing.assert_allclose(Rb[2], R, atol=1e-8)
 
@@ -53,7 +52,7 @@ def test_batch_flags_degenerate_samples():
 def test_planarity_helpers():
     X = np.c_[np.random.default_rng(1).uniform(-1, 1, (10, 2)), np.full(10, 2.0)]
     assert is_planar(X)
-    c, B = plane_frame(X)
+    _c, B = plane_frame(X)
     np.testing.assert_allclose(abs(B[:, 2]), [0, 0, 1], atol=1e-12)
     assert np.isclose(np.linalg.det(B), 1)
     assert not is_planar(np.random.default_rng(2).normal(size=(10, 3)))
@@ -78,3 +77,14 @@ def test_bad_inputs():
         is_planar(X[:, :2])
     with pytest.raises(ValueError, match="points must have shape"):
         plane_frame(X[:, :2])
+
+
+def test_batch_planar_four_points():
+    rng = np.random.default_rng(4)
+    X = np.c_[rng.uniform(-1, 1, (4, 2)), np.full(4, -1.0)]
+    R = attitude_matrix([15, 20, 10])
+    u = project_points(X, R, T0, K0)
+    Rb, tb, ok = dlt_pose_batch(X[None], u[None], K0)
+    assert ok[0]
+    np.testing.assert_allclose(Rb[0], R, atol=1e-9)
+    np.testing.assert_allclose(tb[0], T0, atol=1e-9)

@@ -4,10 +4,6 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
-from hypothesis import strategies as st
-from scipy.spatial.transform import Rotation
-
 from eotrack.pose import (
     attitude_matrix,
     constrained_crlb,
@@ -24,6 +20,9 @@ from eotrack.pose import (
     quaternion_crlb,
     quaternion_from_matrix,
 )
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from scipy.spatial.transform import Rotation
 
 R0 = attitude_matrix([15, 20, 10])
 T0 = np.array([1.0, 1.2, 10.0])

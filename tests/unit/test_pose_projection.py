@@ -4,9 +4,6 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
-from hypothesis import strategies as st
-
 from eotrack.pose import (
     attitude_matrix,
     camera_points,
@@ -18,6 +15,8 @@ from eotrack.pose import (
     rotation_error_deg,
     skew,
 )
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 R0 = attitude_matrix([15, 20, 10])
 T0 = np.array([1.0, 1.2, 10.0])

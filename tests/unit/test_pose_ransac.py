@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-
 from eotrack.pose import (
     RansacConfig,
     attitude_matrix,
@@ -96,7 +95,7 @@ def test_refine_pose_converges_from_perturbed_start():
 
 def test_best_initial_pose_noise_free():
     X, u, _ = _scene(sigma=0.0, frac=0.0)
-    R, t = best_initial_pose(X, u, K0)
+    R, _t = best_initial_pose(X, u, K0)
     np.testing.assert_allclose(R, R0, atol=1e-8)
 
 

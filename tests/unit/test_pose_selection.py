@@ -4,9 +4,6 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
-from hypothesis import strategies as st
-
 from eotrack.pose import (
     attitude_matrix,
     crlb_weight_matrix,
@@ -19,6 +16,8 @@ from eotrack.pose import (
     select_features_crlb,
     set_score,
 )
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 K0 = intrinsic_matrix(10.0)
 R0 = attitude_matrix([15, 20, 10])
@@ -46,7 +45,7 @@ def test_score_is_weighted_sum_of_seven_crlbs():
 @given(st.integers(0, 10_000))
 @settings(max_examples=20, deadline=None)
 def test_exact_score_monotone_and_rule_keeps_everything(seed):
-    X, sig, r = _pts(seed, 30)
+    X, sig, _r = _pts(seed, 30)
     rng = np.random.default_rng(seed)
     s = information_monotonicity(X, R0, T0, K0, sig, rng.permutation(30))
     assert np.all(np.diff(s) <= 1e-12 * s[0])
@@ -71,7 +70,7 @@ def test_pooled_and_sandwich_drop_noisy_points():
 
 
 def test_tolerance_rule_keeps_fewer():
-    X, sig, r = _pts(3, 100)
+    X, sig, _r = _pts(3, 100)
     sel = select_features_crlb(X, R0, T0, K0, np.random.default_rng(0), rule="tolerance",
                                sigma_px=sig, tol=0.02)
     assert sel.n_selected < 100

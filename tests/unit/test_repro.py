@@ -108,3 +108,21 @@ def test_cli_rejects_unknown_slug():
 
     with pytest.raises(ValueError, match="unknown paper slug"):
         main(["nope", "--quick"])
+
+
+def test_readme_table_from_scorecards(tmp_path):
+    from eotrack.repro.readme import update_readme
+
+    (tmp_path / "papers_repro" / "demo").mkdir(parents=True)
+    (tmp_path / "papers_repro" / "demo" / "scorecard.json").write_text(json.dumps(
+        {"slug": "demo", "title": "A. Author, Demo paper, 2020", "summary": "1/2 reproduced"}))
+    (tmp_path / "notebooks" / "py").mkdir(parents=True)
+    (tmp_path / "notebooks" / "py" / "07_demo_topic.py").write_text(
+        "# # 07 · Demo topic\nfrom eotrack.experiments import demo as D\n")
+    readme = tmp_path / "README.md"
+    readme.write_text("intro\n<!-- notebooks-table -->\nold\n<!-- /notebooks-table -->\nend\n")
+    assert update_readme(tmp_path)
+    text = readme.read_text()
+    assert "[Demo topic](notebooks/07_demo_topic.ipynb)" in text and "1/2 reproduced" in text
+    assert "old" not in text and text.endswith("end\n")
+    assert not update_readme(tmp_path)  # idempotent

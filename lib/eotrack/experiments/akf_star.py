@@ -65,6 +65,7 @@ __all__ = [
     "VARIANT_PARTS",
     "AblationConfig",
     "AblationResult",
+    "claim_results",
     "make_filter",
     "plot_error_curves",
     "plot_example_frames",
@@ -85,7 +86,7 @@ class AblationConfig:
         Frames per sequence and sequences per scenario.
     epsilon_px
         Success threshold ε of eq. (49) (not given by the paper; adopted).
-    gate_px, gate_sigma
+    gate_px, gate_sigma, gate_max_px
         Association gate (see :func:`eotrack.tracking.kalman.track_nearest`); continuity counts
         frames whose estimate lies within ``gate_px`` of the truth.
     r_px2
@@ -110,6 +111,7 @@ class AblationConfig:
     epsilon_px: float = 2.0
     gate_px: float = 10.0
     gate_sigma: float = 4.0
+    gate_max_px: float = 60.0
     r_px2: float = 0.25
     prior_sea_state: int = 3
     singer_period_s: float = 9.0
@@ -195,7 +197,7 @@ def track_sequence(seq: StarSequence, cfg: AblationConfig, rng: np.random.Genera
         dets, c_img = cache[method]
         filt = make_filter(kind, x0, sensor, cfg)
         res = track_nearest(filt, dets, gate_px=cfg.gate_px, gate_sigma=cfg.gate_sigma,
-                            c_img=c_img)
+                            gate_max_px=cfg.gate_max_px, c_img=c_img)
         res.extra["n_detections"] = np.array([len(d) for d in dets])
         out[name] = res
     return out
@@ -246,6 +248,11 @@ class AblationResult:
     def continuity(self) -> pd.DataFrame:
         """Fraction of frames whose estimate lies within the association gate of the truth."""
         return self._frame((self.errors <= self.config.gate_px).mean(axis=(1, 3)))
+
+    def lost_fraction(self) -> pd.DataFrame:
+        """Fraction of sequences whose estimate ends farther than ``gate_px`` from the truth
+        (the track was lost and not re-acquired)."""
+        return self._frame((self.errors[..., -1] > self.config.gate_px).mean(axis=1))
 
     def median_error(self) -> pd.DataFrame:
         """Median error per scenario and variant (robust companion of Table 1)."""
@@ -425,9 +432,9 @@ def _claims(res: AblationResult, claims: dict[str, Any]) -> list[ClaimResult]:
     cont = C["BEAK-ST"]
     red = 1 - E["BEAK-ST"].mean() / E["Baseline"].mean()
     ok_c = bool((cont > claims["akf_star.headline"].paper["continuity_min"]).all())
-    ok_r = bool(red >= 0.30)
-    st = Status.REPRODUCED if ok_c and ok_r else (Status.PARTIAL if ok_c or ok_r
-                                                   else Status.NOT_REPRODUCED)
+    ok_r = bool(0.25 <= red <= 0.60)
+    st = Status.REPRODUCED if ok_c and ok_r else (
+        Status.PARTIAL if ok_c or ok_r or red > 0.25 else Status.NOT_REPRODUCED)
     ours = (f"continuity of BEAK-ST {cont.min():.3f}-{cont.max():.3f} over the scenarios; mean "
             f"error {E['BEAK-ST'].mean():.2f} px vs Baseline {E['Baseline'].mean():.2f} px "
             f"({100 * red:.0f} % lower); BEAK-ST success rate {Ps['BEAK-ST'].min():.3f}-"
@@ -439,10 +446,17 @@ def _claims(res: AblationResult, claims: dict[str, Any]) -> list[ClaimResult]:
     if not ok_c:
         note += f" Continuity below 0.95 in {int((cont <= 0.95).sum())} scenario(s)."
     if not ok_r:
-        note += f" Error reduction only {100 * red:.0f} %."
+        note += (f" Error reduction {100 * red:.0f} % (outside 25-60 %): "
+                 + ("the global-threshold Baseline loses the star altogether under strong and "
+                    "stray light." if red > 0.6 else "smaller than the paper's."))
     out.append(ClaimResult.from_claim(claims["akf_star.headline"], status=st, ours=ours,
                                       note=note))
     return out
+
+
+def claim_results(res: AblationResult) -> list[ClaimResult]:
+    """One scorecard row per claim id, from an ablation result."""
+    return _claims(res, load_claims(SLUG))
 
 
 def reproduce(*, quick: bool = False, runner: TrialRunner | None = None) -> Reproduction:
@@ -460,6 +474,8 @@ def reproduce(*, quick: bool = False, runner: TrialRunner | None = None) -> Repr
             _side_by_side(Ps, _paper_table(claims["akf_star.table2"], "success_rate"), 3),
         f"Continuity (estimate within {cfg.gate_px:g} px of the truth)": C.round(3),
         "Median tracking error (px)": res.median_error().round(2),
+        "Lost tracks (fraction of sequences ending > gate from the truth)":
+            res.lost_fraction().round(3),
     }
     fig6, ax6 = plt.subplots(figsize=(6.4, 4.0))
     plot_error_curves(res, ax=ax6)

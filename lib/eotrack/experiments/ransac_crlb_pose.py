@@ -14,7 +14,7 @@ after selection, the reading of the selection rule).
 from __future__ import annotations
 
 import time
-from dataclasses import asdict, dataclass, field, replace
+from dataclasses import asdict, dataclass, replace
 from typing import Any
 
 import matplotlib.pyplot as plt
@@ -156,7 +156,7 @@ class Settings:
     n_mc_efficiency: int = 200   # Monte Carlo draws per noise level (beyond the paper)
     n_runs_budget: int = 30      # scenes for the budgeted-selection study (beyond the paper)
     seed: int = 20161110
-    readings: tuple[str, ...] = field(default=tuple(READINGS))
+    readings: tuple[str, ...] = ("as printed", "pooled", "sandwich", "tolerance")
 
     def ransac_config(self, scenario: Scenario) -> RansacConfig:
         """RANSAC settings for ``scenario`` (threshold scales with the noise unit)."""
@@ -239,9 +239,13 @@ def run_trial(rng: np.random.Generator, scenario: Scenario, settings: Settings,
     Rm, tm = refine_pose(X, u, scene.K, res.R, res.t, sigma_px=sig)
     out["pos_ml"], out["att_ml"] = _errors(Rm, tm, scene)
     resid = u - project_points(X, res.R, res.t, scene.K)
+    # one independent stream per reading, so a reading's result does not depend on which
+    # other readings are computed in the same run
+    sel_seed = int(rng.integers(2**62))
     for name in settings.readings:
         rule, start = READINGS[name]
-        sel = select_features_crlb(X, res.R, res.t, scene.K, rng, rule=rule, start=start,
+        rng_sel = np.random.default_rng([sel_seed, list(READINGS).index(name)])
+        sel = select_features_crlb(X, res.R, res.t, scene.K, rng_sel, rule=rule, start=start,
                                    sigma_px=sig, residuals=resid,
                                    max_draws=settings.crlb_max_draws, tol=settings.tolerance)
         S = sel.selected
@@ -360,7 +364,7 @@ def plot_error_runs(df: pd.DataFrame, quantity: str = "pos", reading: str = "san
     a, b = ok[f"{quantity}_{reading}"].mean(), ok[f"{quantity}_ransac"].mean()
     ax.set_title(f"{fig_no} — {'position' if quantity == 'pos' else 'attitude'} error, "
                  f"{len(ok)} runs (mean {a:.3g} vs {b:.3g})")
-    ax.legend(loc="upper right")
+    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.18), ncol=2)
     return ax
 
 
@@ -378,7 +382,7 @@ def plot_selected_counts(df: pd.DataFrame, reading: str = "sandwich",
     ax.set_ylabel("number of feature points")
     frac = (ok[f"n_{reading}"] / ok["n_inliers"]).mean()
     ax.set_title(f"Fig. 6 — points selected over {len(ok)} runs (ours: {frac:.2f} of inliers)")
-    ax.legend(loc="lower right")
+    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.18), ncol=3)
     return ax
 
 
@@ -530,8 +534,11 @@ def _compare_claim(claim, ok: pd.DataFrame, q: str, reading: str) -> ClaimResult
     p = _wilcoxon_less(a, b)
     unit = "m" if q == "pos" else "deg"
     win = float(np.mean(a < b))
+    boot = np.random.default_rng(0).integers(0, len(a), (2000, len(a)))
+    lo, hi = np.percentile(a[boot].mean(1) / b[boot].mean(1), [2.5, 97.5])
     ours = (f"{len(ok)} runs, {reading} reading: mean {a.mean():.3g} vs {b.mean():.3g} {unit} "
-            f"(ratio {a.mean() / b.mean():.2f}), median {np.median(a):.3g} vs "
+            f"(ratio {a.mean() / b.mean():.2f}, 95 % CI {lo:.2f}–{hi:.2f}), median "
+            f"{np.median(a):.3g} vs "
             f"{np.median(b):.3g}; CRLB better in {100 * win:.0f} % of runs, Wilcoxon p = {p:.2g}")
     if a.mean() < b.mean() and p < 0.05:
         status, note = Status.REPRODUCED, (
@@ -567,7 +574,8 @@ def evaluate(claims: dict, df: pd.DataFrame, df_counts: pd.DataFrame,
     lo, hi = c6.paper["fraction_range"]
     in_range = lo <= frac.mean() <= hi
     ours = (f"{len(okc)} runs, {reading} reading: selected / inliers = {frac.mean():.2f} "
-            f"(min {frac.min():.2f}, max {frac.max():.2f}); all inliers kept in {n_fb} run(s); "
+            f"(min {frac.min():.2f}, max {frac.max():.2f}); ≥ 95 % of the inliers kept in "
+            f"{int(np.sum(frac >= 0.95))} run(s); fell back to all inliers in {n_fb} run(s); "
             f"as printed (exact CRLB): {(okc['n_as printed'] / okc['n_inliers']).mean():.2f}")
     if in_range and n_fb > 0:
         status, note = Status.REPRODUCED, ""
@@ -576,7 +584,9 @@ def evaluate(claims: dict, df: pd.DataFrame, df_counts: pd.DataFrame,
             f"The fraction {frac.mean():.2f} is about two thirds, but no run fell back to all "
             f"inliers (the paper saw some): with the per-point start test a 6-point start that "
             f"beats the all-inlier score is found within {Settings().crlb_max_draws} draws "
-            "every time. The rule as printed falls back in every run.")
+            f"every time (though {int(np.sum(frac >= 0.95))} run(s) kept ≥ 95 % of the "
+            "inliers, close to the paper's 'equal counts'). The rule as printed falls back in "
+            "every run.")
     else:
         status, note = Status.NOT_REPRODUCED, (
             f"Selected fraction {frac.mean():.2f} outside [{lo}, {hi}].")
@@ -595,7 +605,8 @@ def reproduce(*, quick: bool = False, runner: TrialRunner | None = None,
     n6 = 30 if quick else st.n_runs_counts
     t0 = time.perf_counter()
     df = run_pose_experiment(n45, scenario=sc, settings=st, runner=runner)
-    df6 = run_pose_experiment(n6, scenario=sc, settings=st, runner=runner, seed=st.seed + 1)
+    st6 = replace(st, readings=tuple(dict.fromkeys(("as printed", "exact", st.reading))))
+    df6 = run_pose_experiment(n6, scenario=sc, settings=st6, runner=runner, seed=st.seed + 1)
     t1 = time.perf_counter()
     eff = efficiency_experiment(n_mc=40 if quick else st.n_mc_efficiency, scenario=sc,
                                 runner=runner)

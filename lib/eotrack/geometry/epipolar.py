@@ -77,7 +77,18 @@ def fundamental_from_poses(K1, R1, c1, K2, R2, c2) -> np.ndarray:
     return f / np.linalg.norm(f)
 
 
+def _fast_points(x, name: str) -> np.ndarray:
+    """``as_points`` with a fast path for finite float64 ``(n, 2)`` arrays (the hot loop)."""
+    if type(x) is np.ndarray and x.dtype == np.float64 and x.ndim == 2 and x.shape[1] == 2 \
+            and x.shape[0] and np.isfinite(x).all():
+        return x
+    return as_points(x, name)
+
+
 def _check_F(F) -> np.ndarray:
+    if type(F) is np.ndarray and F.shape == (3, 3) and F.dtype == np.float64 and \
+            np.isfinite(F).all() and F.any():
+        return F
     f = as_finite_array(F, "F")
     if f.shape != (3, 3):
         raise ValueError(f"F must be a 3x3 fundamental matrix, got shape {f.shape}")
@@ -89,11 +100,13 @@ def _check_F(F) -> np.ndarray:
 def epipolar_lines(F, pts1) -> np.ndarray:
     """Lines ``l = F p₁ = (a, b, c)`` in image 2, one row per point of image 1, normalised so
     that ``a² + b² = 1`` (then ``l · (u, v, 1)`` is a signed pixel distance)."""
-    f = _check_F(F)
-    p = as_points(pts1, "pts1")
+    return _lines(_check_F(F), as_points(pts1, "pts1"))
+
+
+def _lines(f: np.ndarray, p: np.ndarray) -> np.ndarray:
     lines = p @ f[:, :2].T + f[:, 2]
     n = np.hypot(lines[:, 0], lines[:, 1])
-    if np.any(n == 0):
+    if not n.all():
         raise ValueError("pts1 contains the epipole of image 1: its epipolar line is undefined")
     return lines / n[:, None]
 
@@ -117,12 +130,14 @@ def epipolar_distances(F, pts1, pts2) -> np.ndarray:
         ``(n1, n2)`` distances.
     """
     f = _check_F(F)
-    p1 = as_points(pts1, "pts1")
-    p2 = as_points(pts2, "pts2")
+    p1 = _fast_points(pts1, "pts1")
+    p2 = _fast_points(pts2, "pts2")
     if len(p1) == 0 or len(p2) == 0:
         return np.zeros((len(p1), len(p2)))
-    lines = epipolar_lines(f, p1)
-    return np.abs(lines[:, :2] @ p2.T + lines[:, 2:])
+    lines = _lines(f, p1)
+    out = lines[:, :2] @ p2.T
+    out += lines[:, 2:]
+    return np.abs(out, out=out)
 
 
 def sampson_distances(F, pts1, pts2) -> np.ndarray:

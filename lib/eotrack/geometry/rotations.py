@@ -14,6 +14,7 @@ from eotrack.validation import as_finite_array
 
 __all__ = [
     "check_rotation",
+    "dcm_321",
     "euler_321_from_matrix",
     "look_at",
     "rot_x",
@@ -55,9 +56,11 @@ def rotation_321(yaw_rad, pitch_rad, roll_rad) -> np.ndarray:
     """Reference → camera matrix of a 3-2-1 rotation, eq. (4) of Huang et al.
 
     ``r = Rz(Y) · Ry(P) · Rx(R)`` with the passive elementary matrices :func:`rot_z`,
-    :func:`rot_y`, :func:`rot_x` — exactly the product printed in the paper. (Read right to
-    left as frame rotations this is a 1-2-3 sequence of the frame; the paper calls it 3-2-1 and
-    we keep its product so the code matches eq. 4. :func:`euler_321_from_matrix` inverts it.)
+    :func:`rot_y`, :func:`rot_x` — exactly the product printed in the paper. Applied to a
+    vector (``x_cam = r x_ref``) this turns the frame first about x by R, then about y by P,
+    then about z by Y: as printed, eq. (4) is a 1-2-3 frame sequence, although the paper calls
+    it 3-2-1. We keep its product so the code matches eq. (4); the conventional aerospace
+    3-2-1 matrix is :func:`dcm_321`. :func:`euler_321_from_matrix` inverts this one.
 
     Parameters
     ----------
@@ -73,6 +76,19 @@ def rotation_321(yaw_rad, pitch_rad, roll_rad) -> np.ndarray:
     p = _angles(pitch_rad, "pitch_rad")
     r = _angles(roll_rad, "roll_rad")
     return rot_z(y) @ rot_y(p) @ rot_x(r)
+
+
+def dcm_321(yaw_rad, pitch_rad, roll_rad) -> np.ndarray:
+    """Conventional aerospace 3-2-1 reference → body matrix ``Rx(roll) · Ry(pitch) · Rz(yaw)``.
+
+    The frame is turned first by yaw about z, then by pitch about the new y, then by roll about
+    the new x (passive matrices). Note the order differs from the paper's eq. (4), see
+    :func:`rotation_321`; the two coincide only when at most one angle is non-zero.
+    """
+    y = _angles(yaw_rad, "yaw_rad")
+    p = _angles(pitch_rad, "pitch_rad")
+    r = _angles(roll_rad, "roll_rad")
+    return rot_x(r) @ rot_y(p) @ rot_z(y)
 
 
 def euler_321_from_matrix(r) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

@@ -9,9 +9,10 @@ isolated. The neighbourhood count
 flagged when ``D ≥ S`` (the text's "not fewer than S"; eq. 2 prints ``D > S``, selectable with
 ``strict=True``).
 
-:func:`neighbourhood_count` uses a summed-area table (two cumulative sums and four look-ups per
-pixel, exact integers, cost independent of the window); ``scipy.ndimage.uniform_filter`` and
-``cv2.boxFilter`` compute the same box sum (see ``benchmarks/bench_track_init_ht.py``).
+:func:`neighbourhood_count` uses OpenCV's unnormalised box filter with an integer output (or,
+``method="sat"``, a numpy summed-area table); both give exact integer counts at a cost
+independent of the window. ``scipy.ndimage.uniform_filter`` computes the same box mean (see
+``benchmarks/bench_track_init_ht.py``).
 """
 
 from __future__ import annotations
@@ -19,7 +20,7 @@ from __future__ import annotations
 import cv2
 import numpy as np
 
-from eotrack.validation import check_int
+from eotrack.validation import check_choice, check_int
 
 __all__ = ["candidate_frames", "cluster_candidates", "cluster_mask", "neighbourhood_count"]
 
@@ -46,7 +47,7 @@ def _window(window: int) -> int:
     return w
 
 
-def neighbourhood_count(binary: np.ndarray, window: int) -> np.ndarray:
+def neighbourhood_count(binary: np.ndarray, window: int, *, method: str = "opencv") -> np.ndarray:
     """Eq. (3): number of set pixels in the ``window × window`` box centred on every pixel.
 
     Parameters
@@ -56,6 +57,10 @@ def neighbourhood_count(binary: np.ndarray, window: int) -> np.ndarray:
         frame.
     window
         Box side ``2p + 1`` (positive odd integer). Pixels outside the image count as 0.
+    method
+        ``"opencv"``: ``cv2.boxFilter`` with an integer (``CV_32S``) output, unnormalised, zero
+        border; ``"sat"``: a numpy summed-area table (two cumulative sums, four look-ups per
+        pixel). Both are exact integer counts.
 
     Returns
     -------
@@ -64,6 +69,14 @@ def neighbourhood_count(binary: np.ndarray, window: int) -> np.ndarray:
     """
     g = _binary(binary, ndim=(2, 3))
     w = _window(window)
+    check_choice(method, "method", ("opencv", "sat"))
+    if method == "opencv":
+        frames = g.reshape((-1, *g.shape[-2:]))
+        out = np.empty(frames.shape, dtype=np.int32)
+        for k, f in enumerate(frames):
+            out[k] = cv2.boxFilter(np.ascontiguousarray(f), cv2.CV_32S, (w, w), normalize=False,
+                                   borderType=cv2.BORDER_CONSTANT)
+        return out.reshape(g.shape)
     p = w // 2
     pad = [(0, 0)] * (g.ndim - 2) + [(p + 1, p), (p + 1, p)]
     sat = np.pad(g, pad).astype(np.int32)

@@ -361,17 +361,16 @@ def _motion_blur(img: np.ndarray, v: np.ndarray) -> np.ndarray:
         return img
     half = int(np.ceil(length / 2)) + 1
     size = 2 * half + 1
-    kern = np.zeros((size, size), np.float32)
     m = max(2, int(np.ceil(4 * length)))
     t = np.linspace(-0.5, 0.5, m)
     px = half + t * v[0]
     py = half + t * v[1]
     x0, y0 = np.floor(px).astype(int), np.floor(py).astype(int)
     fx, fy = px - x0, py - y0
-    np.add.at(kern, (y0, x0), (1 - fx) * (1 - fy))
-    np.add.at(kern, (y0, x0 + 1), fx * (1 - fy))
-    np.add.at(kern, (y0 + 1, x0), (1 - fx) * fy)
-    np.add.at(kern, (y0 + 1, x0 + 1), fx * fy)
+    idx = np.concatenate([y0 * size + x0, y0 * size + x0 + 1, (y0 + 1) * size + x0,
+                          (y0 + 1) * size + x0 + 1])
+    wts = np.concatenate([(1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy])
+    kern = np.bincount(idx, wts, minlength=size * size).reshape(size, size).astype(np.float32)
     kern /= kern.sum()
     return cv2.filter2D(img, -1, kern, borderType=cv2.BORDER_CONSTANT)
 
@@ -450,9 +449,11 @@ def simulate_sequence(rng: np.random.Generator, scenario_: Scenario | str = "nom
     if sc.stray_dn > 0:
         electrons = electrons + gain * _stray(rng, sc, (h, w), truth - truth[0])
     electrons = np.maximum(electrons, 0)
-    noisy = electrons + np.sqrt(electrons) * rng.standard_normal(electrons.shape, np.float32)
-    dn = sensor.bias_dn + noisy / gain + (sensor.read_noise_e * sc.read_noise_scale / gain) * \
+    # shot noise (Gaussian approximation of Poisson) and read noise in one normal draw
+    read_e = sensor.read_noise_e * sc.read_noise_scale
+    noisy = electrons + np.sqrt(electrons + np.float32(read_e**2)) * \
         rng.standard_normal(electrons.shape, np.float32)
+    dn = sensor.bias_dn + noisy / gain
     images = np.clip(np.floor(dn), 0, 255).astype(np.uint8)
     info = {**info, "scenario": sc, "sensor": sensor, "site": site, "motion": motion,
             "flux_e": flux_e, "pixel_scale_arcsec": sensor.pixel_scale_arcsec}

@@ -75,7 +75,7 @@ def star_count_slope(mag, m_lo: float, m_hi: float) -> tuple[float, float]:
     grid = np.linspace(lo, hi, 13)
     n = np.searchsorted(m, grid, side="right").astype(float)
     ok = n > 0
-    if ok.sum() < 3:
+    if len(np.unique(n[ok])) < 3:
         raise ValueError(f"mag holds too few stars between {lo} and {hi} to fit a slope")
     b, a = np.polyfit(grid[ok], np.log10(n[ok]), 1)
     return float(a), float(b)

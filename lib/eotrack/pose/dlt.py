@@ -44,7 +44,7 @@ def plane_frame(points: Any) -> tuple[np.ndarray, np.ndarray]:
     """Centroid ``c`` and orthonormal basis ``B = [e₁ e₂ n]`` (columns) of the best-fit plane."""
     X = as_points(points, "points", dim=3)
     c = X.mean(axis=0)
-    _, _, Vt = np.linalg.svd(X - c)
+    _, _, Vt = np.linalg.svd(X - c, full_matrices=False)
     B = Vt.T.copy()
     if np.linalg.det(B) < 0:
         B[:, 2] *= -1
@@ -84,7 +84,7 @@ def _homography_pose(ab: np.ndarray, xn: np.ndarray, c: np.ndarray, B: np.ndarra
     A[:, 0::2, 6:9] = -x_n[:, :, 0:1] * ah
     A[:, 1::2, 3:6] = ah
     A[:, 1::2, 6:9] = -x_n[:, :, 1:2] * ah
-    Hn = np.linalg.svd(A, full_matrices=False)[2][:, -1].reshape(n_b, 3, 3)
+    Hn = np.linalg.svd(A, full_matrices=A.shape[1] < 9)[2][:, -1].reshape(n_b, 3, 3)
     H = np.linalg.inv(Tx) @ Hn @ Ta
     h1, h2, h3 = H[:, :, 0], H[:, :, 1], H[:, :, 2]
     lam = 2.0 / (np.linalg.norm(h1, axis=1) + np.linalg.norm(h2, axis=1))
@@ -157,7 +157,7 @@ def dlt_pose_batch(points: np.ndarray, pixels: np.ndarray, K: Any, *,
     sel_p = np.flatnonzero(ok & use_plane)
     if sel_p.size:
         c = X[sel_p].mean(axis=1)
-        _, _, Vt = np.linalg.svd(X[sel_p] - c[:, None, :])
+        _, _, Vt = np.linalg.svd(X[sel_p] - c[:, None, :], full_matrices=False)
         Bm = np.swapaxes(Vt, 1, 2).copy()
         Bm[:, :, 2] *= np.sign(np.linalg.det(Bm))[:, None]
         ab = np.einsum("bmk,bkj->bmj", X[sel_p] - c[:, None, :], Bm[:, :, :2])

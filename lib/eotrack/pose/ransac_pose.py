@@ -368,5 +368,5 @@ def ransac_pose_opencv(points: Any, pixels: Any, K: Any, *, threshold_px: float 
         rvec, tvec = cv2.solvePnPRefineLM(X[inliers], u[inliers], K, None, rvec, tvec)
     R = cv2.Rodrigues(rvec)[0]
     t = tvec.ravel().astype(float)
-    e = reprojection_errors(X, u, R, t, K)
+    e = _batch_errors(X, u, R[None], t[None], K)[0]
     return RansacResult(True, R, t, inliers, -1, "cv2.solvePnPRansac", e)

@@ -8,8 +8,8 @@ import time
 from pathlib import Path
 
 from . import available_slugs, experiment_module, papers_repro_dir, write_report
-from .scorecard import check_claims_complete
 from .claims import load_claims
+from .scorecard import check_claims_complete
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -56,6 +56,11 @@ def main(argv: list[str] | None = None) -> int:
         print(f"--> {rep.status_summary()}  [{dt:.1f} s]  {report}", flush=True)
         if not rep.claims:
             failed.append(slug)
+    if args.out is None:  # the project's own reports: refresh the README's status table
+        from .readme import update_readme
+
+        if update_readme(out_root.parent):
+            print("README.md notebook table updated from the scorecards")
     return 1 if failed else 0
 
 

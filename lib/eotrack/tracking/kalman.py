@@ -269,6 +269,10 @@ def kalman_filter(zs: Any, F: Any, H: Any, Q: Any, R: Any, x0: Any, P0: Any
     the same estimates on the same data (to rounding; FilterPy uses the Joseph form for ``P``,
     algebraically equal for the optimal gain). The loop carries ``[P | x]`` as one ``(d, d+1)``
     array so that one matrix product predicts both and one rank-``m`` product updates both.
+    The covariance recursion does not depend on the measured values: once the updated ``P``
+    stops changing (relative change ≤ 1e-15, the steady state of an uninterrupted run of
+    measurements) the converged gain is reused and only the state is propagated, until the
+    next missing measurement restarts the full recursion.
     """
     F_, H_, Q_, R_, x, P = _model(F, H, Q, R, x0, P0)
     m = H_.shape[0]
@@ -285,7 +289,23 @@ def kalman_filter(zs: Any, F: Any, H: Any, Q: Any, R: Any, x0: Any, P0: Any
     selector = np.array_equal(H_, np.hstack([np.eye(m), np.zeros((m, d - m))]))
     if selector and m == 2:
         r00, r01, r10, r11 = R_.ravel().tolist()
+        zl = np.where(np.isfinite(z), z, 0.0)
+        xs_steady = np.full(n, -1)           # frames served by the steady-state gain
+        steady = False
+        K_ss = P_ss = None
+        x = M[:, d].copy()
+        prev_post = None
         for k in range(n):
+            if steady:
+                if have[k]:
+                    x = F_ @ x
+                    x += K_ss @ (zl[k] - x[:2])
+                    out[k, :, d] = x
+                    xs_steady[k] = 1
+                    continue
+                steady = False                 # a gap: back to the full recursion
+                M[:, :d] = P_ss
+                M[:, d] = x
             M = F_ @ M
             P = M[:, :d] @ FT
             P += Q_
@@ -299,10 +319,23 @@ def kalman_filter(zs: Any, F: Any, H: Any, Q: Any, R: Any, x0: Any, P0: Any
                 idet = 1.0 / (a * e - b * c)
                 K = P[:, :2] @ np.array(((e * idet, -b * idet), (-c * idet, a * idet)))
                 M -= K @ (M[:2] - Zr[k])
-                if k % 8 == 0:
-                    P = M[:, :d]
-                    M[:, :d] = 0.5 * (P + P.T)
+                P = M[:, :d]
+                M[:, :d] = 0.5 * (P + P.T)
+                post = M[:, :d]
+                if prev_post is not None and \
+                        np.abs(post - prev_post).max() <= 1e-15 * np.abs(post).max():
+                    steady, K_ss, P_ss = True, K, post.copy()
+                    x = M[:, d].copy()
+                prev_post = post.copy()
+            else:
+                prev_post = None
             out[k] = M
+        # covariances of the steady-state frames: the converged one just before each run
+        flag = np.r_[False, xs_steady > 0, False]
+        starts = np.flatnonzero(~flag[:-1] & flag[1:])
+        ends = np.flatnonzero(flag[:-1] & ~flag[1:])
+        for st, en in zip(starts, ends):
+            out[st:en, :, :d] = out[st - 1, :, :d]
     else:
         HT = np.ascontiguousarray(H_.T)
         for k in range(n):
@@ -329,9 +362,10 @@ def kalman_filter_batch(zs: Any, F: Any, H: Any, Q: Any, R: Any, x0: Any, P0: An
     """Run :func:`kalman_filter` on ``B`` independent sequences at once (vectorised over ``B``).
 
     The covariance recursion does not depend on the measured values, only on which frames have
-    a measurement. Sequences that share that history share their covariances and gains, so the
-    filter keeps one covariance per distinct history (all sequences share one when every frame
-    is measured) and applies the gains to the ``(B, d)`` states in single array operations.
+    a measurement: while every sequence has had the same pattern (e.g. all measured, or a
+    shared occlusion) one covariance and gain serve the whole batch; once the patterns differ
+    each sequence carries its own covariance, updated with element-wise closed forms (for a
+    position-selecting ``H`` with two measurements) instead of per-matrix products.
 
     Parameters
     ----------
@@ -369,36 +403,49 @@ def kalman_filter_batch(zs: Any, F: Any, H: Any, Q: Any, R: Any, x0: Any, P0: An
     z0 = np.where(np.isfinite(z), z, 0.0)
     FT = np.ascontiguousarray(F_.T)
     HT = np.ascontiguousarray(H_.T)
-    cls = np.zeros(B, dtype=np.int64)        # covariance class of each sequence
-    Pc = P0_[None].copy()                    # (C, d, d)
+    selector = m == 2 and np.array_equal(H_, np.hstack([np.eye(2), np.zeros((2, d - 2))]))
+    P = P0_.copy()            # shared while every sequence has had the same measurement pattern
+    shared = True
     for k in range(n):
         h = have[:, k]
-        if len(Pc) == 1 and (h.all() or not h.any()):
-            hc = np.array([bool(h[0])])
-        else:
-            key = cls * 2 + h
-            uniq, cls = np.unique(key, return_inverse=True)
-            Pc = Pc[uniq // 2]
-            hc = (uniq % 2).astype(bool)
-        Pc = F_ @ Pc @ FT + Q_
+        if shared and not (h.all() or not h.any()):
+            shared = False
+            P = np.broadcast_to(P, (B, d, d)).copy()
         x = x @ FT
-        if hc.any():
-            Pu = Pc[hc]
-            PHT = Pu @ HT
-            K = PHT @ _inv_stack(H_ @ PHT + R_)                     # (Cu, d, m)
-            Pu = Pu - K @ np.swapaxes(PHT, 1, 2)
-            Pc[hc] = 0.5 * (Pu + np.swapaxes(Pu, 1, 2))
-            innov = z0[:, k] - x @ HT
-            if len(Pc) == 1:
-                x += innov @ K[0].T
+        if shared:
+            P = F_ @ P @ FT + Q_
+            if h[0]:
+                PHT = P @ HT
+                K = PHT @ _inv_stack(H_ @ PHT + R_)
+                P = P - K @ PHT.T
+                P = 0.5 * (P + P.T)
+                x += (z0[:, k] - x @ HT) @ K.T
+        else:
+            # F P Fᵀ for the whole stack as two large matrix products
+            FP = np.matmul(F_, P)
+            P = np.matmul(FP, FT)
+            P += Q_
+            if selector:
+                PHT = P[:, :, :2]
+                a_, b_, c_, e_ = (P[:, 0, 0] + R_[0, 0], P[:, 0, 1] + R_[0, 1],
+                                  P[:, 1, 0] + R_[1, 0], P[:, 1, 1] + R_[1, 1])
+                idet = np.where(h, 1.0 / (a_ * e_ - b_ * c_), 0.0)   # no measurement: K = 0
+                K0 = PHT[:, :, 0] * (e_ * idet)[:, None] - PHT[:, :, 1] * (c_ * idet)[:, None]
+                K1 = PHT[:, :, 1] * (a_ * idet)[:, None] - PHT[:, :, 0] * (b_ * idet)[:, None]
+                P -= K0[:, :, None] * PHT[:, None, :, 0] + K1[:, :, None] * PHT[:, None, :, 1]
+                innov = z0[:, k] - x[:, :2]
+                x += K0 * innov[:, :1] + K1 * innov[:, 1:]
             else:
-                Kc = np.zeros((len(Pc), d, m))
-                Kc[hc] = K
-                x += np.einsum("bdm,bm->bd", Kc[cls], innov)
+                PHT = P @ HT
+                K = PHT @ _inv_stack(H_ @ PHT + R_)
+                K *= h[:, None, None]
+                P = P - K @ np.swapaxes(PHT, 1, 2)
+                x += np.einsum("bdm,bm->bd", K, z0[:, k] - x @ HT)
+            P = 0.5 * (P + np.swapaxes(P, 1, 2))
         xs[:, k] = x
         if Ps is not None:
-            Ps[:, k] = Pc[cls] if len(Pc) > 1 else Pc[0]
-    Pfinal = Pc[cls] if len(Pc) > 1 else np.broadcast_to(Pc[0], (B, d, d)).copy()
+            Ps[:, k] = P
+    Pfinal = np.broadcast_to(P, (B, d, d)).copy() if shared else P
     return xs, (Ps if Ps is not None else Pfinal)
 
 
@@ -451,7 +498,7 @@ class KalmanFilter:
         P = self.P
         PHT = P @ self._HT
         S = self.H @ PHT + R
-        K = np.linalg.solve(S, PHT.T).T
+        K = PHT @ _inv_stack(S)
         e = z - self.H @ self.x
         self.x = self.x + K @ e
         IKH = self._I - K @ self.H
@@ -481,6 +528,11 @@ def sage_husa_weight(k: int, b: float) -> float:
 
 def _clip_eig(a: np.ndarray, lo: float, hi: float) -> np.ndarray:
     a = 0.5 * (a + a.T)
+    if a.shape == (2, 2):  # closed-form eigenvalues: most steps need no change
+        tr, det = a[0, 0] + a[1, 1], a[0, 0] * a[1, 1] - a[0, 1] * a[1, 0]
+        disc = np.sqrt(max(0.25 * tr * tr - det, 0.0))
+        if lo <= 0.5 * tr - disc and 0.5 * tr + disc <= hi:
+            return a
     w, v = np.linalg.eigh(a)
     w = np.clip(w, lo, hi)
     return (v * w) @ v.T
@@ -602,7 +654,7 @@ class ConfidenceConfig:
     adaptive_noise: bool = True
     safeguard: bool = True
     r_bounds: tuple[float, float] = (0.01, 1.0)
-    q_bounds_ratio: tuple[float, float] = (0.25, 100.0)
+    q_bounds_ratio: tuple[float, float] = (1.0, 100.0)
     q_growth: float = 0.5
     q_growth_max: float = 20.0
 
@@ -698,7 +750,7 @@ class ConfidenceKalmanFilter(KalmanFilter):
         cfg = self.config
         e = np.asarray(z, dtype=float) - self.H @ self.x_prior
         S = self.innovation_covariance()
-        d2 = float(e @ np.linalg.solve(S, e))
+        d2 = float(e @ _inv_stack(S) @ e)
         dm = float(np.sqrt(max(d2, 0.0))) if np.isfinite(d2) else np.inf
         c_motion = float(np.exp(-cfg.eta * max(0.0, dm - cfg.gamma)))
         return cfg.omega * float(c_img) + (1 - cfg.omega) * c_motion, dm
@@ -776,13 +828,15 @@ class TrackResult:
 
 def track_nearest(filt: KalmanFilter, detections: Sequence[np.ndarray], *,
                   gate_px: float = 10.0, gate_sigma: float | None = 4.0,
+                  gate_max_px: float = 60.0,
                   c_img: Sequence[np.ndarray] | None = None) -> TrackResult:
     """Track one star through per-frame detections with nearest-neighbour association.
 
     At each frame the filter predicts; the detection nearest to the predicted position within
     the gate is handed to ``filt.update`` with its image confidence. The gate radius is
-    ``max(gate_px, gate_sigma · sqrt(λ_max(S)))`` (pixels; ``S`` the innovation covariance), so
-    it opens while the star is hidden and the prediction becomes uncertain; no
+    ``min(gate_max_px, max(gate_px, gate_sigma · sqrt(λ_max(S))))`` (pixels; ``S`` the
+    innovation covariance), so it opens while the star is hidden and the prediction becomes
+    uncertain, but never so far that a coasting track grabs any spot in the image; no
     detection in the gate means a prediction-only frame. A sequence in which the star is never
     detected is a valid input: the result is pure prediction from ``x0`` (all modes
     ``PREDICT``, covariances growing).
@@ -797,6 +851,8 @@ def track_nearest(filt: KalmanFilter, detections: Sequence[np.ndarray], *,
         Smallest association radius (pixels, > 0).
     gate_sigma
         Gate in standard deviations of the innovation (``None``: fixed radius ``gate_px``).
+    gate_max_px
+        Largest association radius (pixels, ≥ ``gate_px``).
     c_img
         One ``(n_i,)`` array of image confidences per frame (default: all 1).
 
@@ -808,6 +864,9 @@ def track_nearest(filt: KalmanFilter, detections: Sequence[np.ndarray], *,
         raise TypeError(f"filt must be a KalmanFilter, got {type(filt).__name__}")
     gate0 = check_positive(gate_px, "gate_px")
     gs = None if gate_sigma is None else check_positive(gate_sigma, "gate_sigma")
+    gmax = check_positive(gate_max_px, "gate_max_px")
+    if gmax < gate0:
+        raise ValueError(f"gate_max_px must be >= gate_px, got {gate_max_px} < {gate_px}")
     n = len(detections)
     if c_img is not None and len(c_img) != n:
         raise ValueError(f"c_img must have one entry per frame ({n}), got {len(c_img)}")
@@ -833,7 +892,7 @@ def track_nearest(filt: KalmanFilter, detections: Sequence[np.ndarray], *,
             S = filt.innovation_covariance()
             g2 = gate0 * gate0
             if gs is not None:
-                g2 = max(g2, gs * gs * float(np.linalg.eigvalsh(S)[-1]))
+                g2 = min(max(g2, gs * gs * float(np.linalg.eigvalsh(S)[-1])), gmax * gmax)
             if dist2[j] <= g2:
                 z = det[j]
                 ci = float(c_img[k][j]) if c_img is not None else 1.0

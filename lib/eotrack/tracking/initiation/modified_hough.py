@@ -20,7 +20,7 @@ vote per cell however many of its points fall in it (the paper's set-based ``P(t
 the first pair of a cell counts both its frames. A track is confirmed by the ``(m−1)/m`` rule:
 ``P(t) ≥ m − 1``, or, for a cell of ``S_k`` that falls short, together with a 6-neighbour ``t′``
 (±1 cell in ρ, θ or v, same s) that the least-squares line through ``Q(t)`` is close to (within
-one cell in ρ and θ), when the two cells together hold ``m − 1`` frames. Cells are examined in
+1.5 cells of its centre in ρ and θ), when the two cells together hold ``m − 1`` frames. Cells are examined in
 decreasing ``P``; a confirmed track clears its cells and is handed to tracking (its detections
 leave every other cell and later frames' candidate sets). Votes older than ``m`` frames expire.
 
@@ -32,6 +32,7 @@ vectorised.
 
 from __future__ import annotations
 
+import itertools
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field
@@ -109,6 +110,11 @@ class ModifiedHoughInitiator:
         Window of the ``(m−1)/m`` confirmation rule (``2 ≤ m ≤ 16``); ``m = 4`` is 3/4.
     handoff_gate_px
         Gate of the tracking hand-off that claims a confirmed track's later detections.
+    neighbourhood
+        Cells examined around a cell short of votes: 6 (±1 in one of ρ, θ, v — the paper's) or
+        26 (±1 in any combination).
+    origin_px
+        Origin of ρ (the paper does not say; default the image corner ``(0, 0)``).
     max_cells
         Refuse parameter spaces larger than this (memory guard).
     """
@@ -120,6 +126,8 @@ class ModifiedHoughInitiator:
     v_max: float = 240.0
     m: int = 4
     handoff_gate_px: float = 5.0
+    neighbourhood: int = 6
+    origin_px: tuple[float, float] = (0.0, 0.0)
     max_cells: int = 50_000_000
 
     def __post_init__(self) -> None:
@@ -132,6 +140,12 @@ class ModifiedHoughInitiator:
         check_int(self.m, "m", min_value=2, max_value=_MAX_M)
         check_positive(self.handoff_gate_px, "handoff_gate_px")
         check_int(self.max_cells, "max_cells", min_value=1)
+        if self.neighbourhood not in (6, 26):
+            raise ValueError(f"neighbourhood must be 6 (the paper's) or 26, got "
+                             f"{self.neighbourhood!r}")
+        o = np.asarray(self.origin_px, dtype=float)
+        if o.shape != (2,) or not np.all(np.isfinite(o)):
+            raise ValueError(f"origin_px must be two finite numbers, got {self.origin_px!r}")
 
     # ------------------------------------------------------------------ public
     def initiate(self, frames: Sequence) -> list[Track]:
@@ -150,15 +164,17 @@ class ModifiedHoughInitiator:
         """
         fr = validate_frames(frames)
         perms = [canonical_order(f.xy) for f in fr]
-        xys = [f.xy[p] for f, p in zip(fr, perms)]
+        o = np.asarray(self.origin_px, dtype=float)
+        xys = [f.xy[p] - o for f, p in zip(fr, perms)]
         times = np.array([f.time_s for f in fr])
         return _Engine(self, xys, times, fr, perms, log).run()
 
     def cell_of(self, xy_a: np.ndarray, t_a: float, xy_b: np.ndarray,
                 t_b: float) -> tuple[float, float, float, int]:
         """``(ρ, θ_deg, v, s)`` of the motion from ``xy_a`` at ``t_a`` to ``xy_b`` at ``t_b``."""
-        a = np.asarray(xy_a, float).reshape(1, 2)
-        b = np.asarray(xy_b, float).reshape(1, 2)
+        o = np.asarray(self.origin_px, dtype=float)
+        a = np.asarray(xy_a, float).reshape(1, 2) - o
+        b = np.asarray(xy_b, float).reshape(1, 2) - o
         if not float(t_b) > float(t_a):
             raise ValueError(f"t_b must be later than t_a, got {t_a} and {t_b}")
         rho, theta, v, s = _pair_params(a, b, float(t_b) - float(t_a))
@@ -213,6 +229,10 @@ class _Engine:
             np.zeros((0, 2))
         self.fw = [Frame(float(t), x) for t, x in zip(times, xys)]
         self.flag = np.zeros(n_cells, dtype=bool)
+        rng3 = (-1, 0, 1)
+        self.offsets = [(a, b, c) for a in rng3 for b in rng3 for c in rng3
+                        if (a, b, c) != (0, 0, 0)
+                        and (cfg.neighbourhood == 26 or abs(a) + abs(b) + abs(c) == 1)]
         self.cleared: dict[int, int] = {}
         self.handoff = TrackHandOff(cfg.handoff_gate_px)
         # stored pairs of the last m current frames: dict frame -> dict of arrays
@@ -251,29 +271,22 @@ class _Engine:
         return rho, theta, v, (1 if is_ else -1)
 
     def _neighbours(self, ir, it, iv, is_):
-        """The 6 face neighbours of cells (arrays); invalid ones are -1."""
+        """Keys of the 6 (or 26) neighbours of cells (arrays, same s); invalid ones are -1."""
         out = []
-        valid_r = lambda r: (r >= 0) & (r < self.n_rho)  # noqa: E731
-        for dr in (-1, 1):
-            r = ir + dr
-            out.append(np.where(valid_r(r), self._key(np.clip(r, 0, self.n_rho - 1), it, iv,
-                                                      is_), -1))
-        for dv in (-1, 1):
-            v = iv + dv
-            ok = (v >= 0) & (v < self.n_v)
-            out.append(np.where(ok, self._key(ir, it, np.clip(v, 0, self.n_v - 1), is_), -1))
-        # θ ± 1 with wrap-around: the line (ρ, θ) equals (−ρ, θ ± π) with s reversed
         d_rho = self.cfg.d_rho
-        rho_c = (ir - self.r_off + 0.5) * d_rho
-        wrap_r = np.floor(-rho_c / d_rho).astype(np.int64) + self.r_off
-        for dt in (-1, 1):
+        for dr, dt, dv in self.offsets:
+            r = ir + dr
             t = it + dt
+            v = iv + dv
+            # θ wrap-around: the line (ρ, θ) equals (−ρ, θ ± π) with s reversed
             wraps = (t < 0) | (t >= self.n_theta)
-            t_ok = np.mod(t, self.n_theta)
-            r = np.where(wraps, wrap_r, ir)
+            rho_c = (r - self.r_off + 0.5) * d_rho
+            r = np.where(wraps, np.floor(-rho_c / d_rho).astype(np.int64) + self.r_off, r)
             s = np.where(wraps, 1 - is_, is_)
-            ok = (r >= 0) & (r < self.n_rho)
-            out.append(np.where(ok, self._key(np.clip(r, 0, self.n_rho - 1), t_ok, iv, s), -1))
+            t = np.mod(t, self.n_theta)
+            ok = (r >= 0) & (r < self.n_rho) & (v >= 0) & (v < self.n_v)
+            key = self._key(np.clip(r, 0, self.n_rho - 1), t, np.clip(v, 0, self.n_v - 1), s)
+            out.append(np.where(ok, key, -1))
         return out
 
     # -- main loop -------------------------------------------------------------
@@ -474,45 +487,61 @@ class _Engine:
     def _choose_hits(self, pts: np.ndarray, cell: int) -> list[tuple[int, int]]:
         """One detection per frame forming a constant-velocity track consistent with ``cell``.
 
-        First the detection nearest a least-squares constant-velocity fit of all points in each
-        frame; if that track is not consistent (every consecutive pair of hits must map to the
-        cell or one of its 26 neighbours), the combinations are enumerated (at most 256).
-        Returns ``[]`` when no consistent choice covers ``m − 1`` frames.
+        Every consecutive pair of the chosen hits must map to the cell or one of its 26
+        neighbours (:meth:`_consistent`). Among the consistent choices (all combinations when
+        there are at most 256, else the detection nearest a least-squares constant-velocity fit
+        of all points in each frame) the one with the most frames, then the smallest residual
+        of its own constant-velocity fit, wins. Returns ``[]`` when no consistent choice covers
+        ``m − 1`` frames.
         """
         frames_u, counts = np.unique(pts[:, 0], return_counts=True)
-        t = self.times[pts[:, 0]]
-        xy = self.xy_flat[self.off[pts[:, 0]] + pts[:, 1]]
-        pm, v = fit_constant_velocity(t, xy)
-        res = np.hypot(*(xy - (pm + np.outer(t - t.mean(), v))).T)
-        order = np.lexsort((pts[:, 1], res, pts[:, 0]))
-        first = order[np.r_[True, pts[order[1:], 0] != pts[order[:-1], 0]]]
-        if self._consistent(pts[first], cell):
-            return [(int(f), int(d)) for f, d in pts[first]]
-        if np.prod(counts.astype(float)) > 256:
-            return []
+        if np.all(counts == 1):
+            return [(int(f), int(d)) for f, d in pts] if self._consistent(pts, cell) else []
         groups = [np.flatnonzero(pts[:, 0] == f) for f in frames_u]
-        best, best_cost = [], np.inf
-        import itertools
-
-        # all frames first, then subsets dropping one frame (m − 1 frames suffice)
+        if np.prod(counts.astype(float)) > 256:
+            t = self.times[pts[:, 0]]
+            xy = self.xy_flat[self.off[pts[:, 0]] + pts[:, 1]]
+            pm, v = fit_constant_velocity(t, xy)
+            res = np.hypot(*(xy - (pm + np.outer(t - t.mean(), v))).T)
+            groups = [g[np.argsort(res[g], kind="stable")[:2]] for g in groups]
         options = [groups]
         if len(groups) > self.need:
             options += [groups[:i] + groups[i + 1:] for i in range(len(groups))]
+        best, best_cost = [], np.inf
         for gs in options:
             for combo in itertools.product(*gs):
                 idx = np.array(combo)
-                if self._consistent(pts[idx], cell):
-                    cost = float(res[idx].sum())
-                    if cost < best_cost:
-                        best, best_cost = [(int(f), int(d)) for f, d in pts[idx]], cost
+                if not self._consistent(pts[idx], cell):
+                    continue
+                cost = self._cv_rss(pts[idx])
+                if cost < best_cost:
+                    best, best_cost = [(int(f), int(d)) for f, d in pts[idx]], cost
             if best:
                 break
         return best
 
+    def _cv_rss(self, hits: np.ndarray) -> float:
+        """Residual sum of squares of a constant-velocity fit through ``hits``."""
+        t = self.times[hits[:, 0]]
+        xy = self.xy_flat[self.off[hits[:, 0]] + hits[:, 1]]
+        pm, v = fit_constant_velocity(t, xy)
+        return float(np.sum((xy - (pm + np.outer(t - t.mean(), v))) ** 2))
+
     def _consistent(self, hits: np.ndarray, cell: int) -> bool:
-        """Consecutive hits (sorted by frame) all map to ``cell`` or a 26-neighbour of it."""
+        """Hits (sorted by frame) form one constant-velocity track of ``cell``.
+
+        Every consecutive pair maps to ``cell`` or a 26-neighbour of it, and every hit lies
+        within half a ρ cell (δρ/2) of the least-squares constant-velocity fit through them.
+        """
         if len(hits) < 2:
             return False
+        if len(hits) > 2:
+            t = self.times[hits[:, 0]]
+            xy = self.xy_flat[self.off[hits[:, 0]] + hits[:, 1]]
+            pm, vel = fit_constant_velocity(t, xy)
+            r2 = np.sum((xy - (pm + np.outer(t - t.mean(), vel))) ** 2, axis=1)
+            if np.max(r2) > (0.5 * self.cfg.d_rho) ** 2:
+                return False
         xy = self.xy_flat[self.off[hits[:, 0]] + hits[:, 1]]
         dt = np.diff(self.times[hits[:, 0]])
         rho, theta, v, s = _pair_params(xy[:-1], xy[1:], dt)
@@ -531,7 +560,7 @@ class _Engine:
                            & (is_w == cs)))
 
     def _line_close(self, sub: np.ndarray, t: int, t2: int, lo: int) -> bool:
-        """Is the least-squares line through Q(t) within one cell (ρ, θ) of t2's centre?"""
+        """Is the least-squares line through Q(t) in t2 or a cell next to it (ρ, θ)?"""
         pts = self._points_of(sub, [t], lo)
         xy = self.xy_flat[self.off[pts[:, 0]] + pts[:, 1]]
         try:
@@ -543,4 +572,4 @@ class _Engine:
         if dth > math.pi / 2:  # the same line across the θ wrap
             dth = math.pi - dth
             rho = -rho
-        return abs(rho - rho_c) <= self.cfg.d_rho and dth <= self.d_theta
+        return abs(rho - rho_c) <= 1.5 * self.cfg.d_rho and dth <= 1.5 * self.d_theta

@@ -97,9 +97,9 @@ class TemporalContinuityInitiator:
 
     # -- prediction -------------------------------------------------------------------------
     def _predict(self, h: _Hyp, t_now: float) -> np.ndarray:
+        if self.config.predict == "last" or len(h.xy) < 3:
+            return h.xy[-1]
         xy = np.asarray(h.xy[-self.config.frames:])
-        if self.config.predict == "last" or len(xy) < 3:
-            return xy[-1]
         tt = np.asarray(h.t[-self.config.frames:])
         tc = tt - tt.mean()
         v = (tc[:, None] * (xy - xy.mean(axis=0))).sum(axis=0) / (tc @ tc)
@@ -142,10 +142,19 @@ class TemporalContinuityInitiator:
             active = still
             # 2. tentative hypotheses: nearest point in the gate (points may be shared)
             survivors: list[_Hyp] = []
-            for h in tentative:
-                j = self._nearest(self._predict(h, f.time_s), pts, half, used)
-                if j >= 0:
-                    self._add(h, k, j, f)
+            if tentative and len(pts):
+                pred = np.array([self._predict(h, f.time_s) for h in tentative])
+                d = pts[None, :, :] - pred[:, None, :]  # (n_hyp, n_pts, 2)
+                ok = (np.abs(d) <= half).all(axis=2) & ~used[None, :]
+                d2 = np.where(ok, (d * d).sum(axis=2), np.inf)
+                best = np.argmin(d2, axis=1)
+                found = np.isfinite(d2[np.arange(len(tentative)), best])
+            else:
+                best = np.zeros(len(tentative), dtype=int)
+                found = np.zeros(len(tentative), dtype=bool)
+            for h, j, hit in zip(tentative, best, found):
+                if hit:
+                    self._add(h, k, int(j), f)
                 n_left = cfg.frames - (k - h.start + 1)
                 if len(h.hits) >= cfg.min_hits:
                     h.confirmed_at = k

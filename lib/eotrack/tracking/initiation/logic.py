@@ -1,0 +1,309 @@
+"""Logic (n/m) track initiation, with the optional angle constraint of Yuan et al. (2010).
+
+The sliding-window logic method (e.g. He You et al., *Radar Data Processing*, §4): every
+detection not yet in a confirmed track opens a *head*. In a later frame of the head's window the
+head is paired with every detection inside the **velocity gate** ``v_min ≤ |Δxy|/Δt ≤ v_max``
+(Δt the real time difference, so frames need not be consecutive nor evenly spaced); each pair
+becomes a tentative track, and the head itself stays open for the later frames of its window (so
+a target missed in the frame after its head is still found).
+A tentative track with two or more points predicts its position with a **constant-velocity**
+model from its last two points and takes the **nearest neighbour** inside a circular gate of
+radius ``gate_px`` (the segment must also satisfy the velocity gate). A track is confirmed as
+soon as it holds ``n`` detections within ``m`` consecutive frames of the sequence starting at
+its head (2/3: fast confirmation in quiet scenes; 3/4: the standard rule), and dropped when it
+can no longer reach ``n``.
+
+Angle constraint (Yuan G., Sheng F., Ship Electronic Engineering 30(5), 2010): a distant target
+moves nearly uniformly on a straight line, so the angle at the middle of three successive points
+of a track is > 90°; a candidate third point making an angle ≤ ``min_angle_deg`` (90°) with the
+track's last two points ("V shape") is rejected.
+
+Conflicts: tentative tracks reaching ``n`` in the same frame are confirmed in order of more
+points, then smaller total gate distance, then detection position; a tentative track sharing a
+detection with a confirmed one is deleted. Confirmed tracks are handed to tracking
+(:class:`~eotrack.tracking.initiation.gating.TrackHandOff`), which claims their later
+detections.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+from eotrack.validation import check_int, check_positive
+
+from .base import Frame, Track, validate_frames
+from .gating import TrackHandOff, canonical_order, check_velocity_gate
+
+__all__ = ["AngleConstrainedLogicInitiator", "LogicInitiator", "logic_false_track_rate"]
+
+
+@dataclass(frozen=True)
+class LogicInitiator:
+    """Sliding-window n/m logic initiator (defaults: 3/4, the paper's velocity gate).
+
+    Parameters
+    ----------
+    n, m
+        Confirm with ``n`` detections in ``m`` consecutive frames (``2 ≤ n ≤ m``).
+    v_min, v_max
+        Velocity gate for the second point and every later segment (pixels per second).
+    gate_px
+        Radius of the constant-velocity prediction gate for the third and later points (pixels).
+    min_angle_deg
+        If set, reject a new point whose angle at the middle of the last three points is
+        ``≤ min_angle_deg`` (the angle-constrained logic uses 90°).
+    handoff_gate_px
+        Gate of the tracking hand-off after confirmation (pixels).
+    """
+
+    n: int = 3
+    m: int = 4
+    v_min: float = 10.0
+    v_max: float = 240.0
+    gate_px: float = 10.0
+    min_angle_deg: float | None = None
+    handoff_gate_px: float = 5.0
+
+    def __post_init__(self) -> None:
+        check_int(self.m, "m", min_value=2)
+        check_int(self.n, "n", min_value=2, max_value=self.m)
+        check_velocity_gate(self.v_min, self.v_max)
+        check_positive(self.gate_px, "gate_px")
+        if self.min_angle_deg is not None:
+            a = check_positive(self.min_angle_deg, "min_angle_deg", allow_zero=True)
+            if a >= 180:
+                raise ValueError(f"min_angle_deg must lie in [0, 180), got {a}")
+        check_positive(self.handoff_gate_px, "handoff_gate_px")
+
+    @property
+    def label(self) -> str:
+        """Short name, e.g. ``"logic 3/4"`` or ``"angle logic 3/4"``."""
+        pre = "angle logic" if self.min_angle_deg is not None else "logic"
+        return f"{pre} {self.n}/{self.m}"
+
+    def initiate(self, frames: Sequence) -> list[Track]:
+        """Confirmed tracks from ``frames`` (a sequence of ``(time_s, xy)``)."""
+        fr = validate_frames(frames)
+        perms = [canonical_order(f.xy) for f in fr]
+        xys = [f.xy[p] for f, p in zip(fr, perms)]
+        return _LogicRun(self, xys, np.array([f.time_s for f in fr])).run(perms)
+
+
+def AngleConstrainedLogicInitiator(n: int = 3, m: int = 4, *, min_angle_deg: float = 90.0,  # noqa: N802
+                                   **kw) -> LogicInitiator:
+    """The angle-constrained logic initiator: :class:`LogicInitiator` with ``min_angle_deg=90``."""
+    return LogicInitiator(n=n, m=m, min_angle_deg=min_angle_deg, **kw)
+
+
+class _LogicRun:
+    """One pass of the logic method over the frames (internal)."""
+
+    def __init__(self, cfg: LogicInitiator, xys: list[np.ndarray], times: np.ndarray):
+        self.cfg = cfg
+        self.xys = xys
+        self.times = times
+        sizes = [len(x) for x in xys]
+        self.off = np.concatenate([[0], np.cumsum(sizes)]).astype(np.int64)
+        self.avail = np.ones(int(self.off[-1]), dtype=bool)
+        self.xy_flat = np.concatenate(xys) if self.off[-1] else np.zeros((0, 2))
+        self.handoff = TrackHandOff(cfg.handoff_gate_px)
+        m = cfg.m
+        # tentative tracks: global detection ids of hits per window slot (-1 = none)
+        self.start = np.zeros(0, dtype=np.int64)
+        self.hits = np.zeros((0, m), dtype=np.int64)
+        self.cost = np.zeros(0)
+        self.frames = [Frame(float(t), x) for t, x in zip(times, xys)]
+
+    def _avail_view(self, f: int) -> np.ndarray:
+        return self.avail[self.off[f]:self.off[f + 1]]
+
+    def _last_two(self, rows: np.ndarray):
+        """Slots of the last and previous hits of tentative tracks ``rows`` (≥ 2 hits)."""
+        h = self.hits[rows] >= 0
+        m = self.cfg.m
+        idx = np.arange(m)
+        last = np.max(np.where(h, idx, -1), axis=1)
+        prev = np.max(np.where(h & (idx < last[:, None]), idx, -1), axis=1)
+        return last, prev
+
+    def run(self, perms: list[np.ndarray]) -> list[Track]:
+        for k in range(len(self.xys)):
+            self._frame(k)
+        return self.handoff.tracks(perms)
+
+    def _frame(self, k: int) -> None:
+        cfg = self.cfg
+        m = cfg.m
+        xy_k = self.xys[k]
+        self.handoff.claim(k, self.times[k], xy_k, self._avail_view(k))
+        # tentative tracks whose window is over, or that lost a detection to a confirmed track
+        keep = self.start > k - m
+        if len(self.start):
+            h = self.hits
+            keep &= np.all((h < 0) | self.avail[np.maximum(h, 0)], axis=1)
+        self._select(keep)
+        slot_k = k - self.start
+        ids_k = self.off[k] + np.flatnonzero(self._avail_view(k))
+        pk = self.xy_flat[ids_k]
+        tk = self.times[k]
+        count = np.sum(self.hits >= 0, axis=1)
+        new_start, new_hits, new_cost = [], [], []
+        if len(ids_k) and len(self.start):
+            # --- extension of tracks with >= 2 points: CV prediction + nearest neighbour
+            ext = np.flatnonzero(count >= 2)
+            if len(ext):
+                last, prev = self._last_two(ext)
+                g_last = self.hits[ext, last]
+                g_prev = self.hits[ext, prev]
+                t_last = self.times[self.start[ext] + last]
+                t_prev = self.times[self.start[ext] + prev]
+                p_last = self.xy_flat[g_last]
+                p_prev = self.xy_flat[g_prev]
+                vel = (p_last - p_prev) / (t_last - t_prev)[:, None]
+                dt = (tk - t_last)[:, None]
+                pred = p_last + vel * dt
+                d = np.hypot(pred[:, None, 0] - pk[None, :, 0], pred[:, None, 1] - pk[None, :, 1])
+                ok = d <= cfg.gate_px
+                seg = np.hypot(pk[None, :, 0] - p_last[:, None, 0],
+                               pk[None, :, 1] - p_last[:, None, 1]) / dt
+                ok &= (seg >= cfg.v_min) & (seg <= cfg.v_max)
+                if cfg.min_angle_deg is not None:
+                    a = p_prev[:, None, :] - p_last[:, None, :]
+                    b = pk[None, :, :] - p_last[:, None, :]
+                    na = np.hypot(a[..., 0], a[..., 1])
+                    nb = np.hypot(b[..., 0], b[..., 1])
+                    cosang = (a[..., 0] * b[..., 0] + a[..., 1] * b[..., 1]) / np.maximum(
+                        na * nb, 1e-300)
+                    ok &= cosang < np.cos(np.radians(cfg.min_angle_deg))
+                d = np.where(ok, d, np.inf)
+                j = np.argmin(d, axis=1)  # ties: lowest canonical index (x, then y)
+                got = np.isfinite(d[np.arange(len(ext)), j])
+                rows = ext[got]
+                self.hits[rows, slot_k[rows]] = ids_k[j[got]]
+                self.cost[rows] += d[got, j[got]]
+            # --- heads: pair with every detection in the velocity gate
+            heads = np.flatnonzero(count == 1)
+            if len(heads):
+                s0 = np.max(np.where(self.hits[heads] >= 0, np.arange(m), -1), axis=1)
+                g0 = self.hits[heads, s0]
+                p0 = self.xy_flat[g0]
+                dt = tk - self.times[self.start[heads] + s0]
+                dd = pk[None, :, :] - p0[:, None, :]
+                v = np.hypot(dd[..., 0], dd[..., 1]) / dt[:, None]
+                hi, di = np.nonzero((v >= cfg.v_min) & (v <= cfg.v_max))
+                if len(hi):
+                    nh = self.hits[heads[hi]].copy()
+                    nh[np.arange(len(hi)), slot_k[heads[hi]]] = ids_k[di]
+                    new_start.append(self.start[heads[hi]])
+                    new_hits.append(nh)
+                    new_cost.append(np.zeros(len(hi)))
+        # --- new heads
+        if len(ids_k):
+            nh = np.full((len(ids_k), m), -1, dtype=np.int64)
+            nh[:, 0] = ids_k
+            new_start.append(np.full(len(ids_k), k, dtype=np.int64))
+            new_hits.append(nh)
+            new_cost.append(np.zeros(len(ids_k)))
+        if new_start:
+            self.start = np.concatenate([self.start, *new_start])
+            self.hits = np.concatenate([self.hits, *new_hits])
+            self.cost = np.concatenate([self.cost, *new_cost])
+        self._confirm(k)
+        # drop tracks that can no longer reach n within their window
+        count = np.sum(self.hits >= 0, axis=1)
+        remaining = self.start + m - 1 - k
+        self._select(count + remaining >= cfg.n)
+
+    def _select(self, keep: np.ndarray) -> None:
+        self.start = self.start[keep]
+        self.hits = self.hits[keep]
+        self.cost = self.cost[keep]
+
+    def _confirm(self, k: int) -> None:
+        count = np.sum(self.hits >= 0, axis=1)
+        ready = np.flatnonzero(count >= self.cfg.n)
+        if len(ready) == 0:
+            return
+        first = np.max(np.where(self.hits[ready] >= 0, self.hits[ready], -1), axis=1)
+        order = ready[np.lexsort((self.xy_flat[first, 1], self.xy_flat[first, 0],
+                                  self.cost[ready], -count[ready]))]
+        done = np.zeros(len(self.start), dtype=bool)
+        for r in order:
+            g = self.hits[r][self.hits[r] >= 0]
+            if not np.all(self.avail[g]):
+                continue
+            self.avail[g] = False
+            fr = np.searchsorted(self.off, g, side="right") - 1
+            hits = [(int(f), int(gg - self.off[f])) for f, gg in zip(fr, g)]
+            self.handoff.confirm(hits, k, self.frames,
+                                 info={"method": self.cfg.label})
+            done[r] = True
+        h = self.hits
+        clash = np.any((h >= 0) & ~self.avail[np.maximum(h, 0)], axis=1)
+        self._select(~(done | clash))
+
+
+def logic_false_track_rate(n: int, m: int, clutter_per_frame: float, pair_prob: Sequence[float],
+                           gate_prob: float,
+                           inside_prob: Sequence[Sequence[float]] | None = None) -> float:
+    """Expected false tracks confirmed per frame by the n/m logic in uniform Poisson clutter.
+
+    A clutter head opens tentative tracks with the clutter points of each later frame of its
+    window that fall in its velocity gate (expected number ``N_c · pair_prob[Δ−1]`` at a frame
+    gap ``Δ``; the head stays open). Each tentative track then needs ``n − 2`` further points
+    within the ``m``-frame window; in the ``j``-th frame after its second point it finds one with
+    probability ``inside_prob[Δ−1][j−1] · (1 − exp(−N_c · gate_prob))`` — the prediction must
+    fall inside the field (``inside_prob``, default 1) and the gate must hold a clutter point.
+    The expected number of confirmed branches per head, times ``N_c`` heads per frame, is the
+    steady-state rate. Every branch is counted (no conflict resolution: a detection confirmed in
+    one track cannot serve another), so it is an upper bound, tight only when confirmations are
+    rare (3/4 at low density; not 2/3, which confirms almost every pair).
+
+    Parameters
+    ----------
+    n, m
+        The logic rule.
+    clutter_per_frame
+        Mean number of uniform clutter points per frame ``N_c``.
+    pair_prob
+        ``pair_prob[Δ−1]``: probability that a random clutter point lies in the velocity gate of
+        a random head ``Δ`` frames earlier (``Δ = 1 … m−1``).
+    gate_prob
+        Probability that a random clutter point lies in the prediction gate (gate area over field
+        area).
+    inside_prob
+        Optional ``(m−1) × (m−2)`` table described above.
+
+    Returns
+    -------
+    float
+        Expected number of false tracks confirmed per frame.
+    """
+    from math import exp
+
+    m = check_int(m, "m", min_value=2)
+    n = check_int(n, "n", min_value=2, max_value=m)
+    lam = check_positive(clutter_per_frame, "clutter_per_frame", allow_zero=True)
+    pp = [float(p) for p in pair_prob]
+    if len(pp) < m - 1:
+        raise ValueError(f"pair_prob needs m − 1 = {m - 1} entries, got {len(pp)}")
+    g = check_positive(gate_prob, "gate_prob", allow_zero=True)
+    pg = 1.0 - exp(-lam * g)
+    total = 0.0
+    for gap in range(1, m):
+        rest = m - 1 - gap  # frames left in the window after the second point
+        probs = [pg * (float(inside_prob[gap - 1][j]) if inside_prob is not None else 1.0)
+                 for j in range(rest)]
+        # Poisson-binomial distribution of further hits
+        dist = np.zeros(rest + 1)
+        dist[0] = 1.0
+        for p in probs:
+            dist[1:] = dist[1:] * (1 - p) + dist[:-1] * p
+            dist[0] *= 1 - p
+        need = n - 2
+        p_ok = float(dist[need:].sum()) if need <= rest else 0.0
+        total += lam * pp[gap - 1] * p_ok
+    return lam * total

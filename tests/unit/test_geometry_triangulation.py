@@ -1,0 +1,73 @@
+"""Triangulation of rays and the combination of pairwise estimates (§3)."""
+
+import numpy as np
+import pytest
+from eotrack.geometry import (
+    combine_estimates,
+    max_z_score,
+    triangulate_rays,
+    triangulate_two_rays,
+)
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.integers(0, 2**31 - 1), st.integers(2, 6))
+def test_exact_without_noise(seed, n):
+    rng = np.random.default_rng(seed)
+    X = rng.normal(size=3) * 1000
+    orig = rng.normal(size=(n, 3)) * 100
+    D = (X - orig) * rng.uniform(0.1, 10, (n, 1))
+    assert np.allclose(triangulate_rays(orig, D), X, atol=1e-6 * 1000)
+    mid, gap = triangulate_two_rays(orig[0], D[0], orig[1], D[1], return_gap=True)
+    assert np.allclose(mid, X, atol=1e-6 * 1000) and gap < 1e-6
+
+
+def test_two_rays_midpoint_and_vectorised():
+    mid, gap = triangulate_two_rays([0, 0, 0], [1, 0, 0], [0, 1, 2], [0, 0, 1], return_gap=True)
+    assert np.allclose(mid, [0, 0.5, 0]) and gap == pytest.approx(1.0)
+    o1 = np.zeros((4, 3))
+    d1 = np.tile([1.0, 0, 0], (4, 1))
+    o2 = np.tile([5.0, -1, 0], (4, 1))
+    d2 = np.tile([0.0, 1, 0], (4, 1))
+    assert np.allclose(triangulate_two_rays(o1, d1, o2, d2), [[5, 0, 0]] * 4)
+
+
+def test_paper_3sigma_rule_cannot_reject_small_samples():
+    est = np.array([[0.0, 0, 0], [0.1, 0, 0], [500.0, 0, 0]])
+    assert max_z_score(3) < 3
+    assert combine_estimates(est, rule="paper").kept.all()
+    mad = combine_estimates(est, rule="mad", scale_floor_km=0.5)
+    assert mad.kept.tolist() == [True, True, False]
+    assert np.allclose(mad.position, [0.05, 0, 0])
+    gate = combine_estimates(est, rule="gate", gate_km=5.0)
+    assert gate.kept.tolist() == [True, True, False]
+    many = np.vstack([np.zeros((11, 3)), [[100.0, 0, 0]]])
+    assert max_z_score(12) > 3
+    assert combine_estimates(many, rule="paper").kept.tolist() == [True] * 11 + [False]
+
+
+def test_bad_input():
+    with pytest.raises(ValueError, match="parallel"):
+        triangulate_two_rays([0, 0, 0], [1, 0, 0], [0, 1, 0], [2, 0, 0])
+    with pytest.raises(ValueError, match="d1 contains a zero"):
+        triangulate_two_rays([0, 0, 0], [0, 0, 0], [0, 1, 0], [2, 0, 0])
+    with pytest.raises(ValueError, match="o1 must end in 3"):
+        triangulate_two_rays([0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1])
+    with pytest.raises(ValueError, match="origins needs at least 2"):
+        triangulate_rays([[0, 0, 0]], [[1, 0, 0]])
+    with pytest.raises(ValueError, match="origins and directions"):
+        triangulate_rays(np.zeros((2, 3)), np.ones((3, 3)))
+    with pytest.raises(ValueError, match="nearly\\) parallel"):
+        triangulate_rays([[0, 0, 0], [0, 1, 0]], [[1, 0, 0], [1, 0, 0]])
+    with pytest.raises(ValueError, match="rule must be one of"):
+        combine_estimates(np.zeros((2, 3)), rule="median")
+    with pytest.raises(ValueError, match="gate_km is required"):
+        combine_estimates(np.zeros((2, 3)), rule="gate")
+    with pytest.raises(ValueError, match="estimates must have shape"):
+        combine_estimates(np.zeros((2, 2)))
+    with pytest.raises(ValueError, match="k must be finite"):
+        combine_estimates(np.zeros((2, 3)), k=-1)
+    with pytest.raises(ValueError, match="n must be >= 2"):
+        max_z_score(1)

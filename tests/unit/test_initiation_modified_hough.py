@@ -1,0 +1,158 @@
+"""Modified Hough initiator of Xu & Wang (2016)."""
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from eotrack.tracking.initiation import ModifiedHoughInitiator, line_through_points
+
+# (position at t = 0, velocity px/s, frames present): one object in all frames, two missing one
+# frame, two on the same line at different speeds (the paper's scene, noise-free)
+PLANTED = [((60.0, 420.0), (35.0, -22.0), (0, 1, 2, 3)),
+           ((80.0, 80.0), (40.0, 30.0), (0, 1, 3)),
+           ((450.0, 100.0), (-25.0, 45.0), (0, 2, 3)),
+           ((100.0, 300.0), (60.0, 0.0), (1, 2, 3)),
+           ((60.0, 300.0), (40.0, 0.0), (1, 2, 3))]
+
+
+def planted_frames(times=(0.0, 1.0, 2.0, 3.0), clutter=None):
+    frames, truth = [], []
+    for k, t in enumerate(times):
+        xy, lab = [], []
+        for i, (p, v, fs) in enumerate(PLANTED):
+            if k in fs:
+                xy.append(np.add(p, np.multiply(v, t)))
+                lab.append(i)
+        if clutter is not None:
+            xy += list(clutter[k])
+            lab += [-1] * len(clutter[k])
+        frames.append((t, np.array(xy).reshape(-1, 2)))
+        truth.append(np.array(lab))
+    return frames, truth
+
+
+def as_sets(tracks, frames):
+    return {tuple(sorted((f, tuple(np.round(frames[f][1][d], 6))) for f, d in tr.hits))
+            for tr in tracks}
+
+
+def test_planted_scene_exact_recovery_with_missed_frames():
+    frames, truth = planted_frames()
+    tracks = ModifiedHoughInitiator().initiate(frames)
+    assert len(tracks) == 5
+    got = {}
+    for tr in tracks:
+        ids = {int(truth[f][d]) for f, d in tr.hits}
+        assert len(ids) == 1
+        i = ids.pop()
+        assert sorted(f for f, _ in tr.hits) == list(PLANTED[i][2])
+        got[i] = tr.confirmed_at
+    # the paper: the object seen in all frames at frame 3, the others at frame 4 (0-based 2, 3)
+    assert got == {0: 2, 1: 3, 2: 3, 3: 3, 4: 3}
+
+
+def test_collinear_tracks_of_different_speed_are_separated():
+    frames, truth = planted_frames()
+    tracks = ModifiedHoughInitiator().initiate(frames)
+    speeds = sorted(round(tr.info["speed_px_s"]) for tr in tracks
+                    if {int(truth[f][d]) for f, d in tr.hits} <= {3, 4})
+    assert len(speeds) == 2 and speeds[0] < speeds[1]
+
+
+def test_uneven_and_non_consecutive_frames():
+    frames, _ = planted_frames(times=(0.0, 0.7, 2.1, 2.6))
+    assert len(ModifiedHoughInitiator().initiate(frames)) == 5
+
+
+def test_empty_frames_are_normal_input():
+    ini = ModifiedHoughInitiator()
+    assert ini.initiate([]) == []
+    assert ini.initiate([(0.0, np.zeros((0, 2))), (1.0, np.zeros((0, 2)))]) == []
+    frames, _ = planted_frames()
+    frames.insert(2, (1.5, np.zeros((0, 2))))  # an empty frame in the middle is a missed frame
+    frames = [(t, xy) for t, xy in frames]
+    assert len(ini.initiate(frames)) >= 1
+
+
+def test_stationary_points_rejected_by_velocity_gate():
+    star = np.array([[200.0, 200.0], [300.0, 250.0]])
+    frames = [(float(k), star + 0.01 * k) for k in range(5)]
+    assert ModifiedHoughInitiator().initiate(frames) == []
+
+
+def test_run_log_has_one_row_per_frame():
+    frames, _ = planted_frames()
+    run = ModifiedHoughInitiator().run(frames, log=True)
+    assert [e["frame"] for e in run.log] == [0, 1, 2, 3]
+    assert [e["confirmed"] for e in run.log] == [0, 0, 1, 4]
+    assert all(e["created"] >= 0 and e["destroyed"] >= 0 for e in run.log)
+
+
+def test_cell_of_known_motion():
+    ini = ModifiedHoughInitiator()
+    rho, theta, v, s = ini.cell_of([10, 20], 0.0, [40, 20], 2.0)  # along +x at y = 20
+    assert theta == pytest.approx(90.0)
+    assert rho == pytest.approx(20.0)
+    assert v == pytest.approx(15.0)
+    assert s == 1
+    assert ini.cell_of([40, 20], 0.0, [10, 20], 2.0)[3] == -1
+
+
+@given(st.floats(0.0, math.pi - 1e-3), st.floats(-300, 300))
+@settings(max_examples=50, deadline=None)
+def test_line_through_points_recovers_line(theta, rho):
+    n = np.array([math.cos(theta), math.sin(theta)])
+    u = np.array([-n[1], n[0]])
+    pts = rho * n + np.outer(np.linspace(-50, 80, 6), u)
+    r2, t2 = line_through_points(pts)
+    if abs(t2 - theta) > math.pi / 2:  # same line across the wrap
+        t2, r2 = t2 + math.copysign(math.pi, theta - t2), -r2
+    assert t2 == pytest.approx(theta, abs=1e-6)
+    assert r2 == pytest.approx(rho, abs=1e-6)
+
+
+@given(st.integers(0, 2**32 - 1))
+@settings(max_examples=8, deadline=None)
+def test_result_independent_of_detection_order(seed):
+    rng = np.random.default_rng(seed)
+    clutter = [rng.uniform(0, 512, (6, 2)) for _ in range(4)]
+    frames, _ = planted_frames(clutter=clutter)
+    ini = ModifiedHoughInitiator(neighbourhood=26)
+    ref = as_sets(ini.initiate(frames), frames)
+    shuffled = [(t, xy[rng.permutation(len(xy))]) for t, xy in frames]
+    assert as_sets(ini.initiate(shuffled), shuffled) == ref
+
+
+@pytest.mark.parametrize(("kw", "match"), [
+    ({"d_rho": 0.0}, "d_rho"),
+    ({"d_theta_deg": -5.0}, "d_theta_deg"),
+    ({"d_theta_deg": 200.0}, "d_theta_deg"),
+    ({"d_v": 0.0}, "d_v"),
+    ({"v_min": 240.0, "v_max": 10.0}, "v_min < v_max"),
+    ({"v_min": -1.0}, "v_min"),
+    ({"m": 1}, "m must be >= 2"),
+    ({"neighbourhood": 8}, "neighbourhood"),
+    ({"origin_px": (0.0, np.nan)}, "origin_px"),
+])
+def test_bad_config(kw, match):
+    with pytest.raises(ValueError, match=match):
+        ModifiedHoughInitiator(**kw)
+
+
+@pytest.mark.parametrize(("frames", "exc", "match"), [
+    ([(1.0, [[1, 2]]), (0.0, [[1, 2]])], ValueError, "increasing time order"),
+    ([(0.0, [[1, 2, 3]])], ValueError, "shape"),
+    (np.zeros((3, 2)), TypeError, "sequence"),
+])
+def test_bad_frames(frames, exc, match):
+    with pytest.raises(exc, match=match):
+        ModifiedHoughInitiator().initiate(frames)
+
+
+def test_huge_parameter_space_refused():
+    frames = [(0.0, [[1e7, 1e7]]), (1.0, [[1e7 + 20, 1e7]])]
+    with pytest.raises(ValueError, match="max_cells"):
+        ModifiedHoughInitiator(max_cells=1000).initiate(frames)
