@@ -13,10 +13,9 @@ import timeit
 import warnings
 
 import numpy as np
+from eotrack.robust import SinusoidDrift, fit_linear, predict_linear, wransac_linear
 from scipy.optimize import least_squares
 from skimage.measure import ransac as sk_ransac
-
-from eotrack.robust import SinusoidDrift, fit_linear, predict_linear, wransac_linear
 
 N, SIGMA, OUTLIERS, THRESH, HYP = 120, 3.0, 0.10, 9.0, 100
 rng = np.random.default_rng(0)

@@ -40,7 +40,6 @@ import importlib.metadata as md
 import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
-
 from eotrack import plotting
 from eotrack.experiments import wransac as W
 from eotrack.montecarlo import TrialRunner
@@ -54,7 +53,6 @@ from eotrack.robust import (
     min_samples_real,
     msac_loss,
     predict_linear,
-    ransac_linear,
     sinusoidal_loss,
     sinusoidal_loss_as_printed,
     success_probability,
@@ -358,7 +356,7 @@ W.explore(scenario=sc)
 plt.show()
 
 # %% tags=["nbval-ignore-output"]
-import ipywidgets as widgets  # noqa: E402
+import ipywidgets as widgets
 
 
 def _panel(sigma, outliers, t_over_sigma, loss, horizon, model):
@@ -367,7 +365,7 @@ def _panel(sigma, outliers, t_over_sigma, loss, horizon, model):
     plt.show()
 
 
-widgets.interact(
+panel = widgets.interact(
     _panel,
     sigma=widgets.FloatSlider(value=3.0, min=0.5, max=10.0, step=0.5, description="σ (″)",
                               continuous_update=False),
@@ -380,7 +378,7 @@ widgets.interact(
     horizon=widgets.IntSlider(value=72, min=15, max=72, step=3, description="horizon (min)",
                               continuous_update=False),
     model=widgets.Dropdown(options=list(W.MODELS), value="sinusoid_drift", description="model"),
-);
+)
 
 # %% [markdown]
 # ## 8 · Errata and deviations

@@ -390,11 +390,14 @@ plt.show()
 # $\hat C_k=0.9\hat C_{k-1}+0.1C_k$, $\tau_h=0.85\hat C_k$, $\tau_l=0.35\hat C_k$. Modes:
 # $C_k\ge\tau_h$ update (and a Sage–Husa step); $\tau_l\le C_k<\tau_h$ update with $\lambda R$;
 # otherwise predict only, with Q multiplied by $1+0.5\,n_{missed}$ (≤ 20) while the star stays
-# hidden. **$C_{img}$ is not defined by the paper**; ours is
+# hidden (the tracking driver also holds the last position after 5 missed frames — our track
+# maintenance, applied to every variant). **$C_{img}$ is not defined by the paper**; ours is
 # $C_{img}=\big(1-e^{-(SNR/8)^2}\big)\exp\!\big(-\ln^2(F/F_{ref})/(2\cdot0.7^2)\big)$ — a faint
 # spot, or one much dimmer (translucent cloud) or brighter (glare, a neighbour) than the
-# designated star's reference flux, is trusted less. Our defaults: ω = 0.5, η = 1, γ = 3,
-# λ = 10, b = 0.97. One cloud sequence, BEAK-ST:
+# designated star's reference flux, is trusted less. Our defaults: ω = 0.5, η = 1, γ = 5,
+# λ = 10, b = 0.97 (γ = 5 rather than the 99 % χ² gate γ = 3: see the sensitivity study in
+# section 9 — this choice was made after seeing it, and is reported as such). One cloud
+# sequence, BEAK-ST:
 
 # %%
 seq_c = simulate_sequence(np.random.default_rng(2), "cloud", n_frames=N_FRAMES)
@@ -437,8 +440,9 @@ print(f"Table 2 — success rate (e ≤ {cfg.epsilon_px:g} px), paper vs ours")
 side_by_side(res.success_rate(), "table2", 3)
 
 # %%
-print(f"Continuity (estimate within {cfg.gate_px:g} px) and median error (px)")
-pd.concat({"continuity": res.continuity(), "median error": res.median_error()}, axis=1)
+print(f"Continuity (estimate within {cfg.gate_px:g} px), median error (px) and lost tracks")
+pd.concat({"continuity": res.continuity(), "median error": res.median_error(),
+           "lost tracks": res.lost_fraction()}, axis=1)
 
 # %%
 fig, axs = plt.subplots(1, 2, figsize=(12, 4))
@@ -453,14 +457,20 @@ plt.show()
 card[["claim", "status", "ours", "note"]]
 
 # %% [markdown]
-# **Reading.** The adaptive threshold is what matters here: under strong light and stray
-# light the global μ + kσ threshold, inflated by the sky gradient or the glare, loses the star
-# almost always, while the adaptive method keeps it (errors ≈ 0.3 px). The confidence AKF does
-# **not** help on our sequences: the Sage–Husa R estimate absorbs the lag of the
-# constant-acceleration prediction under sway (R grows, the filter trusts its lagging
-# prediction), and predicting through an occlusion with a constant-acceleration model throws
-# the estimate away from an oscillating star — in some sequences for good. The paper's
-# headline numbers could not be reproduced; see the notes.
+# **Reading.** The adaptive threshold is what matters most on our sequences: under strong
+# light and stray light the global μ + kσ threshold, inflated by the sky gradient or the glare,
+# loses the star almost always, while the adaptive method keeps it (errors of a few tenths of a
+# pixel). The confidence AKF pays off under sway, where its Sage–Husa q_a adapts to a rougher
+# sea than the filter was initialised for, and it helps a little under cloud. At low SNR it
+# brings nothing: with faint, often missing centroids its confidence is low and its adapted
+# noise noisy — in the 20-seed run (`make repro`, `papers_repro/akf_star/REPORT.md`) BEAK-ST
+# loses the star in a few low-SNR sequences and ends behind BEAK-ST-SKF there.
+# It is also *fragile*: when the constant-acceleration prediction lags a sway peak the
+# motion-consistency term treats the genuine star as an outlier, the λR update widens the lag
+# and the star can leave the gate; the γ sensitivity in section 9 shows how close to this edge
+# the filter works. Compare mean and median errors and the *lost tracks* table. Our absolute errors are far below the paper's (a few tenths of a
+# pixel against 1.6–3.9 px) because our centroids are accurate and our success threshold is
+# ε = 2 px; the paper's OTB100 data and ε are unknown.
 
 # %% [markdown]
 # ## 7 · Explore
@@ -470,7 +480,7 @@ card[["claim", "status", "ours", "note"]]
 # the occlusion length.
 
 # %%
-def explore(scenario_name="cloud", b=0.97, lam=10.0, eta=1.0, gamma=3.0, omega=0.5, k=4.0,
+def explore(scenario_name="cloud", b=0.97, lam=10.0, eta=1.0, gamma=5.0, omega=0.5, k=4.0,
             k_b=3.0, occlusion_frames=10, seed=0):
     """Track one sequence with BEAK-ST and Baseline and plot their errors."""
     sc = scenario(scenario_name, occlusion_frames=int(occlusion_frames))
@@ -503,7 +513,7 @@ def _slider(cls, v, lo, hi, step):
 interact(lambda **kw: (explore(**kw), plt.show()), scenario_name=list(SCENARIOS),
          b=_slider(FloatSlider, 0.97, 0.9, 0.999, 0.005),
          lam=_slider(FloatSlider, 10, 1, 100, 1), eta=_slider(FloatSlider, 1, 0, 5, 0.1),
-         gamma=_slider(FloatSlider, 3, 0, 10, 0.5), omega=_slider(FloatSlider, 0.5, 0, 1, 0.05),
+         gamma=_slider(FloatSlider, 5, 0, 10, 0.5), omega=_slider(FloatSlider, 0.5, 0, 1, 0.05),
          k=_slider(FloatSlider, 4, 2, 6, 0.5), k_b=_slider(FloatSlider, 3, 1, 6, 0.5),
          occlusion_frames=_slider(IntSlider, 10, 2, 60, 1), seed=_slider(IntSlider, 0, 0, 20, 1))
 
@@ -517,18 +527,28 @@ interact(lambda **kw: (explore(**kw), plt.show()), scenario_name=list(SCENARIOS)
 # | eq. (10) | Z as the optical axis | Y′ is the optical axis (Fig. 3); eq. (10) checked in its own convention |
 # | eq. (12) | Earth term $-f\omega_e\sin A\cos h$, $-f\omega_e\cos A\cos h$, no latitude | the diurnal rates above (checked against astropy: < 1 % vs ≈ tens of % error) |
 # | eq. (21)–(22) | σ_f called a variance; $T_f\ge I_f$ | standard deviation; $I_f\ge T_f$ |
-# | eqs. (28)–(29) | weights I | weights $I-B$ (background-subtracted) |
+# | eqs. (28)–(29) | weights I | weights $I-B$ (background-subtracted); the region ℜ_k as in the paper (optionally grown, section 9) |
 # | eq. (31) | adds the noise sample to the prediction | prediction uses the mean; noise enters through Q |
-# | eq. (41) | $d_k = 1-b/1-b^k$ | $d_k=(1-b)/(1-b^{k+1})$; safeguard: R eigenvalues clipped to [0.01, 1] px², Q projected on the Singer structure with q_a ∈ [0.25, 100]·q_a,0 |
+# | eq. (41) | $d_k = 1-b/1-b^k$ | $d_k=(1-b)/(1-b^{k+1})$; safeguard: R eigenvalues clipped to [0.01, 1] px², Q projected on the Singer structure with q_a ∈ [1, 16]·q_a,0 (never below the sea-state prior, at most about two sea states rougher) |
 # | eq. (42) | $C_{img}$ undefined | SNR × flux consistency (section 4.6) |
 # | eq. (46) | "Q increased" during occlusion, no law | Q × (1 + 0.5 n_missed), at most × 20; Ĉ held while no star is seen |
 # | §2 | OTB100 frames | simulated real-sky ship sequences (128×128 px, 10°, 5 Hz) |
-# | §2 | ε, ω, η, γ, λ, b, k, k_b, r, σ_b not given | ε = 2 px, ω = 0.5, η = 1, γ = 3, λ = 10, b = 0.97, k = 4, k_b = 3, r = 7, σ_b = 6 px; association gate max(10 px, 4σ) |
+# | §1.4 | no track maintenance after a loss | after 5 frames (1 s) without a measurement the velocity and acceleration are zeroed (hold the last position) so the star can be re-acquired; the same for every variant |
+# | §2 | ε, ω, η, γ, λ, b, k, k_b, r, σ_b not given | ε = 2 px, ω = 0.5, η = 1, γ = 5, λ = 10, b = 0.97, k = 4, k_b = 3, r = 7, σ_b = 6 px; association gate min(30 px, max(10 px, 4σ)) |
 # | abstract | 40 % error reduction, continuity > 95 % | Table 1 gives 52 %; no Table 2 rate reaches 0.95; continuity defined as "estimate within the gate" |
 #
-# The R upper bound of 1 px² is part of our safeguard: with the bound at 25 px² the Sage–Husa
-# R absorbed the prediction lag under sway and BEAK-ST diverged in most sway sequences. This
-# was decided before the final runs and was not tuned towards the paper's numbers.
+# **Choices made after looking at results** (none towards the paper's numbers, all towards a
+# filter that does not lose the star for avoidable reasons): the R upper bound of 1 px² (at
+# 25 px² the Sage–Husa R absorbed the prediction lag under sway and BEAK-ST diverged in most
+# sway sequences); the q_a floor at the sea-state prior (a lower floor let q_a shrink in calm
+# stretches and made the filter over-confident before the next sway peak) and its ceiling of
+# 16× (at 100× the estimate, driven by centroid noise at low SNR, grew so large that a few
+# frames of prediction threw the estimate tens of pixels away); the 30 px cap of the
+# association gate (with 60 px a coasting track grabbed a neighbour star 58 px away); holding
+# the position after 5 missed frames (without it the constant-acceleration extrapolation ran
+# away to hundreds or thousands of pixels); γ = 5 instead of 3 (section 9). The scenario presets (sky levels, cloud sizes, 10-frame occlusions, sea state 5,
+# glare strength, haze) were set so that each scenario stresses its part of the pipeline; with
+# 25-frame occlusions every variant loses the star behind the clouds (try it in *Explore*).
 
 # %% [markdown]
 # ## 9 · Beyond the paper
@@ -557,10 +577,60 @@ beyond = pd.DataFrame(rows_b).groupby(["scenario", "filter"]).mean()
 beyond
 
 # %% [markdown]
+# **Sensitivity of BEAK-ST in a rough sea** (sea state 5, 6 sequences): the Mahalanobis
+# tolerance γ, the Sage–Husa adaptation and ω. "lost" is the fraction of sequences whose final
+# estimate is more than 10 px from the star.
+
+# %%
+seqs_s = [simulate_sequence(np.random.default_rng(200 + i), "sway", n_frames=N_FRAMES)
+          for i in range(6)]
+rows_s = []
+for label, cc in [("γ = 5 (default)", ConfidenceConfig()),
+                  ("γ = 3", ConfidenceConfig(gamma=3.0)),
+                  ("no Sage–Husa", ConfidenceConfig(adaptive_noise=False)),
+                  ("ω = 0.8", ConfidenceConfig(omega=0.8)),
+                  ("b = 0.95", ConfidenceConfig(forgetting=0.95))]:
+    c_s = A.AblationConfig(confidence=cc)
+    errs_s = np.array([np.hypot(*(A.track_sequence(q, c_s, np.random.default_rng(i),
+                                                   variants={"b": ("adaptive", "akf")})["b"]
+                                  .xs[:, :2] - q.truth).T) for i, q in enumerate(seqs_s)])
+    rows_s.append({"setting": label, "lost": np.mean(errs_s[:, -1] > 10),
+                   "median error (px)": np.median(errs_s),
+                   "success (ε = 2 px)": np.mean(errs_s <= 2)})
+sens = pd.DataFrame(rows_s).set_index("setting")
+sens
+
+# %% [markdown]
 # A consistent filter has mean NEES and NIS near 2. Values far above 2 mean the filter is
 # over-confident (its covariance is too small for its actual errors) — the signature of the
-# model mismatch (constant acceleration against oscillating sway) discussed above.
-#
+# model mismatch (constant acceleration against oscillating sway) discussed above; values far
+# below 2 mean it is too cautious. The standard CA filter initialised for sea state 3 is
+# over-confident in the sea-state-5 sway (NEES ≈ 6, NIS ≈ 11); the adaptive q_a of BEAK-ST
+# brings both near 2 there. A plain constant-velocity filter with a generous white-acceleration
+# density (`AblationConfig.cv_q`) is very cautious (NEES ≪ 2) and, precisely because it follows
+# the measurements closely, has the smallest errors with bright stars — but it loses the star
+# at low SNR, where following every faint centroid is the wrong thing to do. The extra
+# structure of the paper's filter pays off only where measurements are unreliable.
+
+# %% [markdown]
+# **Centroid accuracy of the thresholded centre of gravity.** Eqs. (28)–(29) weight only the
+# pixels above the local threshold, so the PSF wings are cut and the centroid is pulled towards
+# the brightest pixel ("pixel locking"). Growing each region by two pixels before weighting
+# (`ExtractionConfig(centroid_grow=2)`, not the paper's method) removes most of that bias — on
+# the nominal sequence:
+
+# %%
+seq_n = simulate_sequence(np.random.default_rng(7), "nominal", n_frames=60)
+cent = {}
+for grow in (0, 2):
+    c_e = ExtractionConfig(centroid_grow=grow)
+    d_e = [np.hypot(*(extract_stars(im, config=c_e).xy - t).T).min()
+           for im, t in zip(seq_n.images, seq_n.truth)]
+    cent[f"centroid_grow={grow}"] = {"median error (px)": np.median(d_e),
+                                     "90th percentile (px)": np.percentile(d_e, 90)}
+pd.DataFrame(cent).T
+
+# %% [markdown]
 # **FilterPy cross-check** is in section 4.6 (identical estimates to 1e-8). The benchmark
 # `benchmarks/bench_akf_star.py` times one filter step against FilterPy, the batched filter,
 # and our extraction against SEP.

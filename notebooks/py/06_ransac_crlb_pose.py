@@ -62,6 +62,7 @@ from eotrack.pose import (
     select_features_crlb,
 )
 from eotrack.repro import load_claims
+from eotrack.robust import min_samples
 
 plotting.style()
 pd.set_option("display.precision", 4)
@@ -203,6 +204,9 @@ assert np.all(err_true[kept] < 2 * cfg.inlier_threshold_px)
 junk = np.random.default_rng(3).uniform(-3, 3, scene.pixels.shape)
 fail = ransac_pose_dlt(scene.points, junk, sc.K, rng, RansacConfig(inlier_threshold_px=0.05,
                                                                    max_draws=100))
+# how many draws would be needed? eq. (2) of paper 01: U = log(1 − P) / log(1 − (1 − ε)^6)
+print("draws for a clean 6-point sample with 99 % confidence at ε = 10 %:",
+      min_samples(0.99, 0.1, 6), f"(we allow {cfg.max_draws})")
 print("pure-noise image:", fail.success, "-", fail.message)
 assert not fail.success
 
@@ -285,10 +289,11 @@ assert 0.8 < ml_lin["att RMS / CRLB"] < 1.2 and 0.75 < ml_lin["pos RMS / CRLB"] 
 # * even past the start, every added point lowers the score → every inlier is kept.
 
 # %%
-sizes, scores = rep.data["monotonicity"]
+sizes, scores, sandwich = rep.data["monotonicity"]
 assert np.all(np.diff(scores, axis=1) <= 1e-12 * scores[:, :1])
+assert np.any(np.diff(sandwich, axis=1) > 0)  # the unweighted estimator's covariance can rise
 fig, ax = plt.subplots()
-E.plot_monotonicity(sizes, scores, ax=ax)
+E.plot_monotonicity(sizes, scores, sandwich, ax=ax)
 plt.show()
 print(f"score of 6 points / score of all {sizes[-1]}: "
       f"{(scores[:, 0] / scores[:, -1]).min():.0f}× or more")
@@ -369,8 +374,17 @@ E.plot_selected_counts(counts, st.reading,
 plt.show()
 ok6 = counts[counts["success"]]
 pd.DataFrame({r: {"kept / inliers": (ok6[f"n_{r}"] / ok6["n_inliers"]).mean(),
+                  "runs keeping ≥ 95 % of the inliers":
+                      int(np.sum(ok6[f"n_{r}"] >= 0.95 * ok6["n_inliers"])),
                   "runs falling back to all inliers": int(ok6[f"fallback_{r}"].sum())}
               for r in E.READINGS if f"n_{r}" in ok6}).T
+
+# %% [markdown]
+# The counts are bimodal: most runs keep roughly half to three quarters of the inliers, but
+# some keep nearly all of them — the closest our readings come to the paper's runs with "equal
+# counts". A true
+# fall-back (no 6-point start beating all inliers) never happens with the per-point start test;
+# with the literal test it happens every time.
 
 # %% [markdown]
 # ## 6 · Scorecard

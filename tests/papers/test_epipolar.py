@@ -50,7 +50,8 @@ def test_core_numbers(rep):
     assert 0.80 < f5.loc[10.5, "correct"] < 0.95
     f6 = rep.tables["Fig. 6"].set_index("L (px)")
     # Monte Carlo against its binomial expectation, and far above the paper's bound
-    assert np.allclose(f6["ours MC (overlapping views)"], f6["analytic (overlapping)"], atol=0.03)
+    assert np.allclose(f6["ours MC (overlapping views)"], f6["binomial (overlapping)"], atol=0.03)
+    assert np.allclose(f6["Poisson (overlapping)"], f6["binomial (overlapping)"], atol=0.03)
     assert f6.loc[5, "ours MC (overlapping views)"] > 3 * f6.loc[5, "paper"]
     t4 = rep.tables["Table 4"]
     assert (t4["ours noise-free (px)"].iloc[[2, 4]] < 0.01).all()  # exact poses: ~0 px

@@ -79,3 +79,34 @@ def test_figures_present(rep):
     assert {"fig4_position_error", "fig5_attitude_error", "fig6_selected_points"} <= set(
         rep.figures)
     assert np.isfinite(exp.best_subset_gain()) and exp.best_subset_gain() < 1
+
+
+def test_scene_matches_paper_settings():
+    sc = exp.Scenario()
+    scene = exp.make_scene(np.random.default_rng(0), sc)
+    n = len(scene.points)
+    assert 160 <= n <= 180
+    assert scene.gross.sum() == round(0.1 * n)
+    np.testing.assert_allclose(scene.points[:, 2], -sc.plane_offset_m)
+    assert set(np.round(scene.sigma**2, 6)) <= {0.02, 0.1, 3.0}
+
+
+def test_experiment_bad_inputs():
+    rng = np.random.default_rng(0)
+    with pytest.raises(ValueError, match="outlier_fraction"):
+        exp.make_scene(rng, outlier_fraction=1.5)
+    with pytest.raises(TypeError, match="rng must be"):
+        exp.make_scene(0)
+    with pytest.raises(ValueError, match="n_runs"):
+        exp.run_pose_experiment(0)
+    with pytest.raises(ValueError, match="reading must be one of"):
+        exp.explore(reading="bogus")
+    with pytest.raises(ValueError, match="noise_unit_mm"):
+        exp.budget_experiment(noise_unit_mm=-1.0)
+    with pytest.raises(ValueError, match="quantity must be one of"):
+        exp.plot_error_runs(None, quantity="speed")
+
+
+def test_ransac_failure_is_a_reported_outcome():
+    out = exp.run_trial(np.random.default_rng(1), exp.Scenario(), exp.Settings(), 40, 0.9)
+    assert out["success"] is False and out["ransac_draws"] == exp.Settings().max_draws

@@ -4,11 +4,10 @@ import matplotlib
 
 matplotlib.use("Agg")
 
-import numpy as np  # noqa: E402
-import pytest  # noqa: E402
-
-from eotrack.experiments import track_init_hough as exp  # noqa: E402
-from eotrack.repro import Status, load_claims  # noqa: E402
+import numpy as np
+import pytest
+from eotrack.experiments import track_init_hough as exp
+from eotrack.repro import Status, load_claims
 
 EXPECTED = {
     "track_init.xu_table2": Status.PARTIAL,

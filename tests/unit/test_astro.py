@@ -1,12 +1,11 @@
 """Offline astronomy: settings, TLEs, frames, Earth shadow, catalogue."""
 
 import astropy.units as u
+import eotrack.astro as A
 import numpy as np
 import pytest
 from astropy.coordinates import AltAz, SkyCoord
 from astropy.time import Time
-
-import eotrack.astro as A
 
 
 def test_offline_settings_applied_on_import():

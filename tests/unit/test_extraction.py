@@ -35,6 +35,15 @@ def test_centroids_brightest_first(method):
         assert np.min(np.hypot(*(xs - p).T)) < 0.25, i  # thresholded CoG: pixel locking
 
 
+def test_centroid_grow_reduces_bias():
+    img, xy = _frame(np.random.default_rng(0))
+    err = []
+    for grow in (0, 2):
+        out = extract_stars(img, config=ExtractionConfig(centroid_grow=grow))
+        err.append(max(np.min(np.hypot(*(out.xy - p).T)) for p in xy))
+    assert err[1] < err[0] and err[1] < 0.08
+
+
 def test_adaptive_survives_gradient_global_does_not():
     img, xy = _frame(np.random.default_rng(1), bg=60, gradient=150)
     a = extract_stars(img)

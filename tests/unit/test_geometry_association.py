@@ -11,6 +11,8 @@ from eotrack.geometry import (
     summary_table,
     three_view_check,
 )
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 
 def test_paper_rule_nearest_one_to_one():
@@ -22,6 +24,18 @@ def test_paper_rule_nearest_one_to_one():
     d2 = np.array([[1.0, 2.0], [1.1, 20.0]])
     assert associate(d2, 10.0).tolist() == [[0, 0]]
     assert associate(d2, 10.0, rule="hungarian").tolist() == [[0, 1], [1, 0]]
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.integers(0, 2**31 - 1), st.integers(0, 8), st.integers(0, 8), st.floats(0, 30),
+       st.sampled_from(["paper", "hungarian"]))
+def test_one_to_one_and_gated(seed, n1, n2, L, rule):
+    d = np.random.default_rng(seed).uniform(0, 20, (n1, n2))
+    pairs = associate(d, L, rule=rule)
+    assert len(set(pairs[:, 0])) == len(pairs) == len(set(pairs[:, 1]))
+    assert np.all(d[pairs[:, 0], pairs[:, 1]] < L)
+    if rule == "hungarian":  # the global rule never associates fewer pairs than the greedy one
+        assert len(pairs) >= len(associate(d, L))
 
 
 def test_greedy_prefix_property():

@@ -2,7 +2,6 @@
 
 import numpy as np
 import pytest
-
 from eotrack.tracking.initiation import Frame, Initiator, Track, validate_frames
 
 

@@ -4,10 +4,9 @@ import math
 
 import numpy as np
 import pytest
+from eotrack.tracking.initiation import HoughInitiator, hough_accumulator
 from hypothesis import given, settings
 from hypothesis import strategies as st
-
-from eotrack.tracking.initiation import HoughInitiator, hough_accumulator
 
 
 @given(st.floats(0.05, math.pi - 0.05), st.floats(-200, 200))
@@ -32,7 +31,7 @@ def test_accumulator_matches_skimage_on_integer_points():
     pts = np.array([[x, 2 * x // 3 + 5] for x in range(0, 60, 3)])
     img[pts[:, 1], pts[:, 0]] = True
     theta = (np.arange(180) + 0.5) * np.pi / 180
-    h_sk, th_sk, d_sk = hough_line(img, theta=theta)
+    h_sk, _, _ = hough_line(img, theta=theta)
     acc = hough_accumulator(pts.astype(float), d_rho=1.0, d_theta_deg=1.0)
     assert acc.votes.max() == h_sk.max()
     assert acc.votes.sum() == h_sk.sum()

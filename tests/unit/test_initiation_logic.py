@@ -2,9 +2,6 @@
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
-from hypothesis import strategies as st
-
 from eotrack.tracking.initiation import (
     AngleConstrainedLogicInitiator,
     LogicInitiator,
@@ -16,6 +13,8 @@ from eotrack.tracking.initiation import (
     validate_frames,
     velocity_gated_pairs,
 )
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 PLANTED = [((60.0, 420.0), (35.0, -22.0), (0, 1, 2, 3)),
            ((80.0, 80.0), (40.0, 30.0), (0, 1, 3)),

@@ -4,10 +4,9 @@ import math
 
 import numpy as np
 import pytest
+from eotrack.tracking.initiation import ModifiedHoughInitiator, line_through_points
 from hypothesis import given, settings
 from hypothesis import strategies as st
-
-from eotrack.tracking.initiation import ModifiedHoughInitiator, line_through_points
 
 # (position at t = 0, velocity px/s, frames present): one object in all frames, two missing one
 # frame, two on the same line at different speeds (the paper's scene, noise-free)
@@ -156,3 +155,19 @@ def test_huge_parameter_space_refused():
     frames = [(0.0, [[1e7, 1e7]]), (1.0, [[1e7 + 20, 1e7]])]
     with pytest.raises(ValueError, match="max_cells"):
         ModifiedHoughInitiator(max_cells=1000).initiate(frames)
+
+
+def test_votes_older_than_m_frames_do_not_count():
+    # object A in frames 0 and 1 only; object B with the same cell (same positions and
+    # velocity) in frames 33 and 34: the frame bits wrap around after 32 frames, so stale votes
+    # of A would give B's cell three frames. They must have expired.
+    a0, a1 = [100.0, 100.0], [130.0, 120.0]
+    frames = [(float(k), np.zeros((0, 2))) for k in range(36)]
+    frames[0] = (0.0, np.array([a0]))
+    frames[1] = (1.0, np.array([a1]))
+    frames[33] = (33.0, np.array([a0]))
+    frames[34] = (34.0, np.array([a1]))
+    assert ModifiedHoughInitiator().initiate(frames) == []
+    # the same two pairs within m frames do confirm (P counts frames 0, 1 and 2 via two pairs)
+    frames3 = [(0.0, np.array([a0])), (1.0, np.array([a1])), (2.0, np.array([[160.0, 140.0]]))]
+    assert len(ModifiedHoughInitiator().initiate(frames3)) == 1

@@ -114,6 +114,24 @@ def test_never_visible_is_pure_prediction():
     assert np.all(res.modes == FilterMode.PREDICT)
 
 
+def test_track_nearest_hold_and_gate():
+    F, H, Q, R, _, P0 = _model()
+    x0 = np.array([10.0, 10.0, 5.0, 0.0, 1.0, 0.0])
+    dets = [np.zeros((0, 2))] * 40
+    res = track_nearest(KalmanFilter(F, H, Q, R, x0, P0), dets, hold_after=5)
+    assert np.all(res.xs[5:, 2:] == 0) and np.ptp(res.xs[5:, 0]) == 0
+    free = track_nearest(KalmanFilter(F, H, Q, R, x0, P0), dets, hold_after=None)
+    assert free.xs[-1, 0] > res.xs[-1, 0] + 50
+    # a spot beyond the largest gate is never associated
+    far = [np.array([[200.0, 200.0]])] * 5
+    out = track_nearest(KalmanFilter(F, H, Q, R, x0, P0), far, gate_max_px=30.0)
+    assert np.all(np.isnan(out.z))
+    with pytest.raises(ValueError, match="gate_max_px"):
+        track_nearest(KalmanFilter(F, H, Q, R, x0, P0), far, gate_px=10.0, gate_max_px=5.0)
+    with pytest.raises(ValueError, match="c_img"):
+        track_nearest(KalmanFilter(F, H, Q, R, x0, P0), far, c_img=[np.ones(1)])
+
+
 def test_confidence_all_trusted_equals_standard():
     F, H, Q, R, x0, P0 = _model()
     _, zs = _zs(np.random.default_rng(3))

@@ -2,7 +2,6 @@
 
 import numpy as np
 import pytest
-
 from eotrack.montecarlo import TrialRunner, run_trials, trial_generators
 
 

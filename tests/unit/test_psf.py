@@ -2,10 +2,9 @@
 
 import numpy as np
 import pytest
+from eotrack.imaging import render_gaussian_spots
 from hypothesis import given, settings
 from hypothesis import strategies as st
-
-from eotrack.imaging import render_gaussian_spots
 
 
 @settings(max_examples=30, deadline=None)

@@ -5,7 +5,6 @@ import json
 import matplotlib.pyplot as plt
 import pandas as pd
 import pytest
-
 from eotrack.repro import (
     ClaimResult,
     Reproduction,
@@ -66,7 +65,7 @@ def test_claim_result_needs_note_unless_reproduced(repro_root):
     assert ok.status is Status.REPRODUCED and ok.criterion == "Within 1 %."
     with pytest.raises(ValueError, match="needs a note"):
         ClaimResult.from_claim(c, ours="3", status=Status.NOT_REPRODUCED)
-    with pytest.raises(ValueError, match="is not a valid Status"):
+    with pytest.raises(ValueError, match=r"is not a valid Status"):
         ClaimResult.from_claim(c, ours="3", status="maybe", note="x")
 
 
@@ -76,7 +75,7 @@ def test_scorecard_and_report(repro_root, tmp_path):
             ClaimResult.from_claim(c["demo.b"], ours="reversed", status="partial",
                                    note="ordering differs by one place")]
     check_claims_complete(c, rows)
-    with pytest.raises(ValueError, match="missing \\['demo.b'\\]"):
+    with pytest.raises(ValueError, match=r"missing \['demo\.b'\]"):
         check_claims_complete(c, rows[:1])
     df = scorecard(rows)
     assert list(df.columns) == ["claim", "paper", "ours", "criterion", "status", "note"]

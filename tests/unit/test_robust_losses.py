@@ -2,9 +2,6 @@
 
 import numpy as np
 import pytest
-from hypothesis import given
-from hypothesis import strategies as st
-
 from eotrack.robust import (
     LOSSES,
     get_loss,
@@ -14,6 +11,8 @@ from eotrack.robust import (
     sinusoidal_loss_as_printed,
     zero_one_loss,
 )
+from hypothesis import given
+from hypothesis import strategies as st
 
 finite = st.floats(-1e6, 1e6, allow_nan=False)
 pos = st.floats(1e-3, 1e3)

@@ -2,9 +2,6 @@
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
-from hypothesis import strategies as st
-
 from eotrack.robust import (
     Polynomial,
     SinusoidDrift,
@@ -16,13 +13,15 @@ from eotrack.robust import (
     ransac_linear,
     wransac_linear,
 )
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 T = np.arange(0.0, 7200.0, 90.0)
 
 
 def corrupt(rng, y, frac):
     y = y.copy()
-    k = int(round(frac * len(y)))
+    k = round(frac * len(y))
     idx = rng.choice(len(y), k, replace=False)
     y[idx] += rng.uniform(50, 500, k) * rng.choice([-1, 1], k)
     return y, idx

@@ -3,10 +3,9 @@
 import math
 
 import pytest
+from eotrack.robust import min_samples, min_samples_real, success_probability
 from hypothesis import given
 from hypothesis import strategies as st
-
-from eotrack.robust import min_samples, min_samples_real, success_probability
 
 
 def test_paper_setting():

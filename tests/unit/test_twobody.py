@@ -8,6 +8,7 @@ from eotrack.astro.twobody import (
     elements_to_state,
     geo_positions,
     line_of_sight_clear,
+    place_on_shell,
     propagate_elements,
     solve_kepler,
 )
@@ -49,6 +50,17 @@ def test_geo_and_line_of_sight():
     obs = np.array([[7000.0, 0, 0], [-7000.0, 0, 0]])
     clear = line_of_sight_clear(obs, g[0])
     assert clear.tolist() == [True, False]  # the second looks through the Earth
+
+
+def test_place_on_shell():
+    o = np.array([7000.0, 0, 0])
+    X = place_on_shell(o, [[1.0, 0, 0], [-1.0, 0, 0], [0, 3.0, 0]])
+    assert np.allclose(np.linalg.norm(X, axis=1), GEO_RADIUS_KM)
+    assert np.allclose(X[0], [GEO_RADIUS_KM, 0, 0]) and np.allclose(X[1], [-GEO_RADIUS_KM, 0, 0])
+    with pytest.raises(ValueError, match="origin_km must lie inside"):
+        place_on_shell([5e4, 0, 0], [[1.0, 0, 0]])
+    with pytest.raises(ValueError, match="directions must have shape"):
+        place_on_shell(o, [[1.0, 0]])
 
 
 def test_bad_input():

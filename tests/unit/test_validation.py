@@ -2,7 +2,6 @@
 
 import numpy as np
 import pytest
-
 from eotrack.validation import (
     as_finite_array,
     as_points,
@@ -58,7 +57,7 @@ def test_scalars():
         check_choice("x", "m", ["a"])
     with pytest.raises(TypeError, match="m must be a string"):
         check_choice(1, "m", ["a"])
-    with pytest.raises(TypeError, match="rng must be a numpy.random.Generator"):
+    with pytest.raises(TypeError, match=r"rng must be a numpy\.random\.Generator"):
         check_generator(np.random.RandomState(0))
     with pytest.raises(ValueError, match="a and b must have the same length"):
         check_same_length("a", np.zeros(2), "b", np.zeros(3))

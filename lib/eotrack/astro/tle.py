@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from functools import lru_cache
 from importlib import resources
+from itertools import pairwise
 
 import numpy as np
 from astropy.time import Time
@@ -29,7 +30,7 @@ def verification_tles() -> dict[int, tuple[str, str]]:
     text = resources.files("sgp4").joinpath("SGP4-VER.TLE").read_text()
     lines = [ln.rstrip() for ln in text.splitlines()]
     out: dict[int, tuple[str, str]] = {}
-    for a, b in zip(lines, lines[1:], strict=False):
+    for a, b in pairwise(lines):
         if a.startswith("1 ") and b.startswith("2 ") and a[2:7] == b[2:7]:
             out[int(a[2:7])] = (a[:69], b[:69])
     return out

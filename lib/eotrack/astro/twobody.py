@@ -18,6 +18,7 @@ __all__ = [
     "elements_to_state",
     "geo_positions",
     "line_of_sight_clear",
+    "place_on_shell",
     "propagate_elements",
     "solve_kepler",
 ]
@@ -139,6 +140,42 @@ def geo_positions(ra_deg, dec_deg, radius_km: float = GEO_RADIUS_KM) -> np.ndarr
     rad = check_positive(radius_km, "radius_km")
     ra, dec = _broadcast(ra, dec)
     return rad * np.stack([np.cos(dec) * np.cos(ra), np.cos(dec) * np.sin(ra), np.sin(dec)], -1)
+
+
+def place_on_shell(origin_km, directions, radius_km: float = GEO_RADIUS_KM) -> np.ndarray:
+    """Where lines of sight from ``origin_km`` leave a geocentric sphere of ``radius_km``.
+
+    GEO object placement from a sensor's lines of sight: the far intersection of each ray
+    ``origin + s·d`` (s > 0) with the sphere. The origin must lie inside the sphere.
+
+    Parameters
+    ----------
+    origin_km
+        Sensor position ``(3,)`` (km, geocentric).
+    directions
+        Directions ``(n, 3)`` (any length > 0).
+    radius_km
+        Shell radius (default: the geostationary radius).
+
+    Returns
+    -------
+    numpy.ndarray
+        ``(n, 3)`` positions on the shell.
+    """
+    o = as_finite_array(origin_km, "origin_km", shape=(3,))
+    d = as_finite_array(directions, "directions", ndim=2)
+    if d.shape[1] != 3:
+        raise ValueError(f"directions must have shape (n, 3), got {d.shape}")
+    n = np.linalg.norm(d, axis=1, keepdims=True)
+    if np.any(n == 0):
+        raise ValueError("directions contains a zero vector")
+    d = d / n
+    rad = check_positive(radius_km, "radius_km")
+    c = o @ o - rad**2
+    if c >= 0:
+        raise ValueError(f"origin_km must lie inside the shell of radius {rad} km")
+    b = d @ o
+    return o + (-b + np.sqrt(b * b - c))[:, None] * d
 
 
 def line_of_sight_clear(observer_km, target_km, *, body_radius_km: float = EARTH_RADIUS_KM,

@@ -86,9 +86,10 @@ class AblationConfig:
         Frames per sequence and sequences per scenario.
     epsilon_px
         Success threshold ε of eq. (49) (not given by the paper; adopted).
-    gate_px, gate_sigma, gate_max_px
-        Association gate (see :func:`eotrack.tracking.kalman.track_nearest`); continuity counts
-        frames whose estimate lies within ``gate_px`` of the truth.
+    gate_px, gate_sigma, gate_max_px, hold_after
+        Association gate and track maintenance (see
+        :func:`eotrack.tracking.kalman.track_nearest`); continuity counts frames whose estimate
+        lies within ``gate_px`` of the truth.
     r_px2
         Initial measurement variance R (pixels²) of every filter.
     prior_sea_state
@@ -111,7 +112,8 @@ class AblationConfig:
     epsilon_px: float = 2.0
     gate_px: float = 10.0
     gate_sigma: float = 4.0
-    gate_max_px: float = 60.0
+    gate_max_px: float = 30.0
+    hold_after: int = 5
     r_px2: float = 0.25
     prior_sea_state: int = 3
     singer_period_s: float = 9.0
@@ -197,7 +199,8 @@ def track_sequence(seq: StarSequence, cfg: AblationConfig, rng: np.random.Genera
         dets, c_img = cache[method]
         filt = make_filter(kind, x0, sensor, cfg)
         res = track_nearest(filt, dets, gate_px=cfg.gate_px, gate_sigma=cfg.gate_sigma,
-                            gate_max_px=cfg.gate_max_px, c_img=c_img)
+                            gate_max_px=cfg.gate_max_px, hold_after=cfg.hold_after,
+                            c_img=c_img)
         res.extra["n_detections"] = np.array([len(d) for d in dets])
         out[name] = res
     return out
@@ -490,9 +493,16 @@ def reproduce(*, quick: bool = False, runner: TrialRunner | None = None) -> Repr
         f"here: ε = {cfg.epsilon_px:g} px, the association gate, C_img (SNR × flux "
         "consistency), ω, η, γ, λ and the growth of Q during occlusion "
         "(see eotrack.tracking.kalman.ConfidenceConfig). No parameter was tuned to the paper's "
-        "numbers.")
+        "numbers. Adopted after inspecting track losses (for robustness, and stated here as "
+        "such): γ = 5 instead of the 99 % χ² value 3 (γ = 3 lost the star in rough-sea "
+        "sequences), R ≤ 1 px² and q_a within [1, 16]× its sea-state prior in the Sage–Husa "
+        "safeguard, an association gate capped at 30 px, and holding the last position after "
+        "5 frames without a measurement (all variants). Mean errors are sensitive to the few "
+        "sequences in which a track is lost; see the median and lost-track tables.")
     settings = {"n_seeds": cfg.n_seeds, "n_frames": cfg.n_frames, "epsilon_px": cfg.epsilon_px,
-                "gate_px": cfg.gate_px, "confidence": asdict(cfg.confidence),
+                "gate_px": cfg.gate_px, "gate_sigma": cfg.gate_sigma,
+                "gate_max_px": cfg.gate_max_px, "hold_after": cfg.hold_after,
+                "confidence": asdict(cfg.confidence),
                 "extraction": asdict(cfg.extraction), "quick": quick}
     return Reproduction(SLUG, TITLE, _claims(res, claims), tables,
                         {"fig6_mean_tracking_error": fig6, "fig7_success_rate": fig7},

@@ -41,8 +41,6 @@ __all__ = [
     "StoneSoupInitiator",
     "XuConfig",
     "angle_constraint_table",
-    "stonesoup_comparison",
-    "xu_config",
     "comparison_initiators",
     "comparison_scene",
     "distance_cdf_square",
@@ -50,6 +48,7 @@ __all__ = [
     "logic_false_track_table",
     "make_xu_scene",
     "plot_comparison",
+    "plot_explore",
     "plot_fig3",
     "plot_logic_false_tracks",
     "plot_xu_frames",
@@ -57,7 +56,9 @@ __all__ = [
     "reproduce",
     "run_comparison",
     "score_tracks",
+    "stonesoup_comparison",
     "timing_table",
+    "xu_config",
     "xu_initiator",
     "xu_redraws",
     "xu_table2",
@@ -82,9 +83,10 @@ class PlantedTarget:
 
 #: Our Table 1 (the paper's numbers are lost): positions at the first frame's time (for tracks 4
 #: and 5, which are first seen in frame 2, the back-extrapolated position), 0-based frames.
-#: Tracks 4 and 5 follow nearly the same path (directions 1.3° apart; track 5 passes within
-#: 4 px of where track 4 was one frame earlier) at different speeds: the speed axis of the
-#: (ρ, θ, v, s) space separates them.
+#: Tracks 4 and 5 follow nearly the same path (directions 0.8° apart; track 5 passes within
+#: 4.5 px of where track 4 was one frame earlier) at different speeds: the speed axis of the
+#: (ρ, θ, v, s) space separates them. (Revised once: our first choice put them 1.3 px apart in
+#: frame 2, closer than the centroid noise can resolve; track 3 was moved once off a star.)
 XU_TARGETS: tuple[PlantedTarget, ...] = (
     PlantedTarget("track 1 (real object)", (62.0, 431.0), (36.5, -21.0), (0, 1, 2, 3)),
     PlantedTarget("track 2", (71.0, 93.0), (41.0, 28.5), (0, 1, 3)),
@@ -286,6 +288,7 @@ def xu_table2(cfg: XuConfig, scene: Scene | None = None,
             ids = {int(scene.labels[f][d]) for f, d in run.tracks[i].hits}
             names.append(str(next(iter(ids)) + 1) if len(ids) == 1 and min(ids) >= 0 else "false")
         rows.append({"frame": k + 1, "candidates": e["candidates"],
+                     "pairs removed by the velocity gate": e["rejected"],
                      "velocity-gated pairs": e["pairs"], "tracks created (cells)": e["created"],
                      "tracks destroyed (cells)": e["destroyed"],
                      "tentative after frame": e["tentative"], "tracks confirmed": e["confirmed"],
@@ -499,7 +502,10 @@ def plot_comparison(df: pd.DataFrame, sweep: str, metric: str,
     sub = df[df["sweep"] == sweep]
     x = "clutter" if sweep == "clutter" else "p_detect"
     for name, g in sub.groupby("method", sort=False):
-        ax.plot(g[x], g[metric], "-o", ms=4, label=name)
+        # the angle-constrained logic often coincides with logic 3/4: draw it dashed on top
+        style = "--s" if name.startswith("angle") else "-o"
+        ax.plot(g[x], g[metric], style, ms=4, mfc="none" if name.startswith("angle") else None,
+                label=name)
     ax.set_xlabel("false alarms per frame" if x == "clutter" else "detection probability P_D")
     ax.set_ylabel({"p_correct": "P(correct initiation)",
                    "false_per_frame": "false tracks per frame"}[metric])
@@ -795,6 +801,48 @@ def stonesoup_comparison(cfg: ComparisonConfig, *, levels: tuple[float, ...] = (
     return pd.DataFrame(rows)
 
 
+# --------------------------------------------------------------------------- explore
+def plot_explore(*, clutter_per_frame: float = 10.0, p_detect: float = 0.9, d_rho: float = 5.0,
+                 d_theta_deg: float = 5.0, d_v: float = 3.0, v_min: float = 10.0,
+                 v_max: float = 240.0, m: int = 4, neighbourhood: int = 6, seed: int = 0,
+                 cfg: ComparisonConfig | None = None, axes=None):
+    """One seeded comparison scene: tracks of the modified Hough and of the (m−1)/m logic.
+
+    Returns the figure; the titles give correct / eligible objects and false tracks.
+    """
+    cfg = cfg or ComparisonConfig()
+    scene = comparison_scene(np.random.default_rng(seed), cfg, clutter_per_frame, p_detect)
+    inits = {
+        f"modified Hough {m - 1}/{m} ({neighbourhood}-nbhd)": ModifiedHoughInitiator(
+            d_rho=d_rho, d_theta_deg=d_theta_deg, d_v=d_v, v_min=v_min, v_max=v_max, m=m,
+            neighbourhood=neighbourhood),
+        f"logic {m - 1}/{m}": LogicInitiator(n=m - 1, m=m, v_min=v_min, v_max=v_max,
+                                            gate_px=cfg.logic_gate_px),
+    }
+    if axes is None:
+        fig, axes = plt.subplots(1, 2, figsize=(10, 5))
+    else:
+        fig = axes[0].figure
+    fr = validate_frames(scene.frames)
+    truth = np.array(scene.truth_xy)
+    for ax, (name, ini) in zip(axes, inits.items()):
+        tracks = ini.initiate(scene.frames)
+        sc = score_tracks(tracks, scene, n=m - 1, m=m)
+        allxy = np.concatenate([xy for _, xy in scene.frames])
+        ax.plot(*allxy.T, ".", color="0.7", ms=3)
+        for i in range(truth.shape[1]):
+            ax.plot(*truth[:, i].T, ":", color="k", lw=1)
+        for tr in tracks:
+            ids = {int(scene.labels[f][d]) for f, d in tr.hits if f <= tr.confirmed_at}
+            good = len(ids) == 1 and min(ids) >= 0
+            ax.plot(*tr.positions(fr).T, "-o" if good else "-x", ms=3,
+                    color="tab:green" if good else "tab:red")
+        _image_axes(ax, scene, cfg.width_px)
+        ax.set_title(f"{name}: {sc['correct']}/{sc['eligible']} found, {sc['false']} false",
+                     fontsize=9)
+    return fig
+
+
 # --------------------------------------------------------------------------- claims
 def _xu_status(ok6: bool, frac6: float, ok26: bool, frac26: float, full: float,
                part: float) -> Status:
@@ -888,9 +936,13 @@ def _evaluate(claims, cfg: XuConfig, table2: pd.DataFrame, nominal: dict[int, di
             f"{bool(np.all(piv_f['modified Hough 3/4'] < piv_f['classic Hough 3/4']))}, "
             f"modified Hough P_correct ≥ {mh_pc:.3f}. At {top:g} false alarms/frame, false "
             "tracks/frame: " + ", ".join(f"{k} {v:.3f}" for k, v in piv_f.loc[top].items()))
-    note = ""
+    ang = piv_f["angle logic 3/4"] - piv_f["logic 3/4"]
+    note = ("(b) at the 10 px prediction gate the angle constraint never acts (a point within "
+            "10 px of a prediction at least v_min·Δt = 10 px ahead always makes an angle > 90°); "
+            f"false-track differences angle − plain {ang.round(4).to_dict()}; see the "
+            "angle-versus-gate table for wider gates")
     if status is not Status.REPRODUCED:
-        parts = []
+        parts = [note]
         if not a_ok:
             parts.append("(a) fails: most false tracks per density "
                          f"{piv_f.idxmax(axis=1).to_dict()}")
@@ -914,17 +966,25 @@ def _evaluate(claims, cfg: XuConfig, table2: pd.DataFrame, nominal: dict[int, di
 
 
 def reproduce(*, quick: bool = False, runner: TrialRunner | None = None,
-              comparison: ComparisonConfig | None = None) -> Reproduction:
-    """Run the 4-frame experiment, its redraws and the method comparison.
+              comparison: ComparisonConfig | None = None, n_redraws: int | None = None,
+              n_trials: int | None = None, n_aux_trials: int | None = None) -> Reproduction:
+    """Run the 4-frame experiment, its redraws, the method comparison and the extras.
 
-    ``quick`` uses fewer redraws and Monte Carlo trials (tests).
+    ``quick`` uses fewer redraws and Monte Carlo trials (tests); ``n_redraws`` (Xu scene
+    redraws), ``n_trials`` (comparison trials per point) and ``n_aux_trials`` (analytic-logic,
+    angle-constraint and Stone Soup trials) override the counts (the notebook uses smaller ones).
     """
     claims = load_claims(SLUG)
     runner = runner or TrialRunner(progress=False)
     cfg = xu_config()
     comp_cfg = comparison or ComparisonConfig()
-    n_redraws = 20 if quick else 100
-    n_comp = 4 if quick else comp_cfg.n_trials
+    if n_redraws is None:
+        n_redraws = 20 if quick else 100
+    if n_trials is None:
+        n_trials = 4 if quick else comp_cfg.n_trials
+    if n_aux_trials is None:
+        n_aux_trials = 4 if quick else 20
+    n_comp = n_trials
     scene = make_xu_scene(cfg)
     nominal, logs, all_tracks = {}, {}, {}
     for nb in (6, 26):
@@ -934,10 +994,12 @@ def reproduce(*, quick: bool = False, runner: TrialRunner | None = None,
     table2, tracks = logs[6], all_tracks[6]
     redraws = xu_redraws(cfg, n_redraws, runner=runner)
     comp = run_comparison(comp_cfg, n_trials=n_comp, runner=runner, xu=cfg)
-    logic_ft = logic_false_track_table(comp_cfg, n_trials=4 if quick else 20, runner=runner,
-                                       xu=cfg)
-    angle = angle_constraint_table(comp_cfg, n_trials=4 if quick else comp_cfg.n_trials,
-                                   runner=runner, xu=cfg)
+    logic_ft = logic_false_track_table(comp_cfg, n_trials=n_aux_trials, runner=runner, xu=cfg)
+    angle = angle_constraint_table(comp_cfg, n_trials=n_aux_trials, runner=runner, xu=cfg)
+    try:
+        stone = stonesoup_comparison(comp_cfg, n_trials=n_aux_trials, runner=runner, xu=cfg)
+    except ImportError as exc:  # pragma: no cover - optional baseline
+        stone = pd.DataFrame({"note": [f"Stone Soup unavailable: {exc}"]})
     tables: dict[str, pd.DataFrame] = {
         "Table 1 (ours; the paper's numbers are lost) — planted objects": pd.DataFrame(
             [{"track": i + 1, "name": t.name, "x0 (px)": t.xy0_px[0], "y0 (px)": t.xy0_px[1],
@@ -949,6 +1011,7 @@ def reproduce(*, quick: bool = False, runner: TrialRunner | None = None,
         "Method comparison — Monte Carlo": comp,
         "Beyond — logic false tracks per frame, analytic vs measured (clutter only)": logic_ft,
         "Beyond — angle constraint versus prediction-gate radius (clutter 10/frame)": angle,
+        "Beyond — Stone Soup MultiMeasurementInitiator on the same scenes": stone,
     }
     figs = {}
     fig, ax = plt.subplots(figsize=(5.4, 5.4))
@@ -995,4 +1058,4 @@ def reproduce(*, quick: bool = False, runner: TrialRunner | None = None,
                         data={"scene": scene, "tracks": all_tracks, "table2": logs,
                               "nominal": nominal,
                               "redraws": redraws, "comparison": comp, "logic_ft": logic_ft,
-                              "angle": angle})
+                              "angle": angle, "stonesoup": stone})

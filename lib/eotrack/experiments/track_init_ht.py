@@ -31,7 +31,7 @@ from eotrack.montecarlo import TrialRunner, run_trials
 from eotrack.plotting import get_ax
 from eotrack.repro import ClaimResult, Reproduction, Status, load_claims
 from eotrack.tracking import hypothesis as hyp
-from eotrack.tracking.initiation.base import Track
+from eotrack.tracking.initiation.base import Frame, Track
 from eotrack.tracking.initiation.temporal import TemporalContinuityInitiator, TemporalTestConfig
 
 __all__ = [
@@ -719,13 +719,14 @@ def plot_sequence_panels(run: dict[str, Any], frame: int, *, fig: plt.Figure | N
     axs[0, 2].imshow(run["clustered"][frame], interpolation="nearest")
     axs[0, 2].set_title(f"Fig. 5 — clustered ({int(run['clustered'][frame].sum())} px)")
     acc = run["clustered"].max(axis=0)
+    fr_objs = [Frame(t, xy) for t, xy in run["frames"]]
     axs[1, 0].imshow(acc, interpolation="nearest")
     axs[1, 0].set_title("clustered points, all frames")
     ax = axs[1, 1]
     ax.imshow(np.zeros_like(acc), vmin=0, vmax=1)
     owner = run["owner"]
     for tr, o in zip(run["tracks"], owner):
-        p = tr.positions([type("F", (), {"xy": xy}) for _, xy in run["frames"]])
+        p = tr.positions(fr_objs)
         ax.plot(p[:, 0], p[:, 1], "-", lw=1.5, color="w" if o >= 0 else "r")
     ax.set_xlim(0, acc.shape[1])
     ax.set_ylim(acc.shape[0], 0)
@@ -735,7 +736,7 @@ def plot_sequence_panels(run: dict[str, Any], frame: int, *, fig: plt.Figure | N
     for i in range(truth.shape[0]):
         ax.plot(truth[i, :, 0], truth[i, :, 1], ":", color="gray", lw=1)
     for tr, o in zip(run["tracks"], owner):
-        p = tr.positions([type("F", (), {"xy": xy}) for _, xy in run["frames"]])
+        p = tr.positions(fr_objs)
         ax.plot(p[:, 0], p[:, 1], ".-", ms=3, label=f"track of target {o}" if o >= 0
                 else "false track")
     ax.set_xlim(0, acc.shape[1])

@@ -65,7 +65,10 @@ __all__ = [
     "TITLE",
     "Scenario",
     "WransacConfig",
+    "budget_sensitivity",
+    "coords_table",
     "error_table",
+    "explore",
     "fit_predict",
     "make_scenario",
     "plot_error_distribution",
@@ -76,9 +79,6 @@ __all__ = [
     "reproduce",
     "run_prediction_experiment",
     "station_correlations",
-    "budget_sensitivity",
-    "coords_table",
-    "explore",
     "threshold_sensitivity",
 ]
 
@@ -682,7 +682,7 @@ def plot_eclipse_season(sc: Scenario, *, ax: plt.Axes | None = None) -> plt.Axes
     ax.bar(np.arange(len(d)) - len(d), d, color="C0")
     ax.axhline(72, ls="--", c="k", lw=0.8)
     ax.set(xlabel="days before the TLE epoch", ylabel="shadow duration (min)",
-           title="Earth-shadow passes of NORAD %d" % WransacConfig().norad_id)
+           title=f"Earth-shadow passes of NORAD {WransacConfig().norad_id}")
     return ax
 
 

@@ -49,10 +49,32 @@ def _tile_stat(img: np.ndarray, t: int, stat) -> np.ndarray:
 
 
 def _mesh_to_image(mesh: np.ndarray, shape: tuple[int, int]) -> np.ndarray:
-    """Bilinear interpolation of block values (nodes at the block centres) to every pixel."""
+    """Bilinear interpolation of block values (nodes at the block centres) to every pixel.
+
+    Beyond the outermost block centres (the half-tile border) the mesh is extrapolated linearly
+    rather than held constant, so a background gradient is followed up to the image edge.
+    """
     if mesh.shape == (1, 1):
         return np.full(shape, mesh[0, 0])
-    return cv2.resize(mesh, (shape[1], shape[0]), interpolation=cv2.INTER_LINEAR)
+    h, w = shape
+    ny, nx = mesh.shape
+    m = mesh.astype(np.float64)
+    # one node of linear extrapolation on each side (a single row/column is held constant)
+    if ny > 1:
+        m = np.vstack([2 * m[:1] - m[1:2], m, 2 * m[-1:] - m[-2:-1]])
+    else:
+        m = np.vstack([m, m, m])
+    if nx > 1:
+        m = np.hstack([2 * m[:, :1] - m[:, 1:2], m, 2 * m[:, -1:] - m[:, -2:-1]])
+    else:
+        m = np.hstack([m, m, m])
+    # pixel centre -> padded mesh index (block j has its centre at (j + 0.5) w / nx - 0.5)
+    mx = ((np.arange(w) + 0.5) * nx / w - 0.5 + 1).astype(np.float32)
+    my = ((np.arange(h) + 0.5) * ny / h - 0.5 + 1).astype(np.float32)
+    map_x = np.broadcast_to(mx[None, :], (h, w)).copy()
+    map_y = np.broadcast_to(my[:, None], (h, w)).copy()
+    return cv2.remap(m, map_x, map_y, interpolation=cv2.INTER_LINEAR,
+                     borderMode=cv2.BORDER_REPLICATE)
 
 
 def _median(b: np.ndarray) -> np.ndarray:

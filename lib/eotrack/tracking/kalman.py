@@ -295,6 +295,7 @@ def kalman_filter(zs: Any, F: Any, H: Any, Q: Any, R: Any, x0: Any, P0: Any
         K_ss = P_ss = None
         x = M[:, d].copy()
         prev_post = None
+        run = 0                              # consecutive measured frames
         for k in range(n):
             if steady:
                 if have[k]:
@@ -319,15 +320,22 @@ def kalman_filter(zs: Any, F: Any, H: Any, Q: Any, R: Any, x0: Any, P0: Any
                 idet = 1.0 / (a * e - b * c)
                 K = P[:, :2] @ np.array(((e * idet, -b * idet), (-c * idet, a * idet)))
                 M -= K @ (M[:2] - Zr[k])
-                P = M[:, :d]
-                M[:, :d] = 0.5 * (P + P.T)
-                post = M[:, :d]
-                if prev_post is not None and \
-                        np.abs(post - prev_post).max() <= 1e-15 * np.abs(post).max():
-                    steady, K_ss, P_ss = True, K, post.copy()
-                    x = M[:, d].copy()
-                prev_post = post.copy()
+                run += 1
+                if run % 8 == 0:  # symmetrise, and test for the steady state (same P twice)
+                    P = M[:, :d]
+                    M[:, :d] = 0.5 * (P + P.T)
+                    post = M[:, :d]
+                    if prev_post is not None and \
+                            np.abs(post - prev_post).max() <= 1e-15 * np.abs(post).max():
+                        steady, K_ss, P_ss = True, K, post.copy()
+                        x = M[:, d].copy()
+                    prev_post = None
+                elif run % 8 == 7:
+                    P = M[:, :d]
+                    M[:, :d] = 0.5 * (P + P.T)
+                    prev_post = M[:, :d].copy()
             else:
+                run = 0
                 prev_post = None
             out[k] = M
         # covariances of the steady-state frames: the converged one just before each run
@@ -441,7 +449,8 @@ def kalman_filter_batch(zs: Any, F: Any, H: Any, Q: Any, R: Any, x0: Any, P0: An
                 K *= h[:, None, None]
                 P = P - K @ np.swapaxes(PHT, 1, 2)
                 x += np.einsum("bdm,bm->bd", K, z0[:, k] - x @ HT)
-            P = 0.5 * (P + np.swapaxes(P, 1, 2))
+            if k % 8 == 0 or k == n - 1:
+                P = 0.5 * (P + np.swapaxes(P, 1, 2))
         xs[:, k] = x
         if Ps is not None:
             Ps[:, k] = P
@@ -645,7 +654,7 @@ class ConfidenceConfig:
 
     omega: float = 0.5
     eta: float = 1.0
-    gamma: float = 3.0
+    gamma: float = 5.0
     lam: float = 10.0
     smoothing: float = 0.9
     tau_high: float = 0.85
@@ -654,7 +663,7 @@ class ConfidenceConfig:
     adaptive_noise: bool = True
     safeguard: bool = True
     r_bounds: tuple[float, float] = (0.01, 1.0)
-    q_bounds_ratio: tuple[float, float] = (1.0, 100.0)
+    q_bounds_ratio: tuple[float, float] = (1.0, 16.0)
     q_growth: float = 0.5
     q_growth_max: float = 20.0
 
@@ -828,7 +837,7 @@ class TrackResult:
 
 def track_nearest(filt: KalmanFilter, detections: Sequence[np.ndarray], *,
                   gate_px: float = 10.0, gate_sigma: float | None = 4.0,
-                  gate_max_px: float = 60.0,
+                  gate_max_px: float = 30.0, hold_after: int | None = 5,
                   c_img: Sequence[np.ndarray] | None = None) -> TrackResult:
     """Track one star through per-frame detections with nearest-neighbour association.
 
@@ -853,6 +862,12 @@ def track_nearest(filt: KalmanFilter, detections: Sequence[np.ndarray], *,
         Gate in standard deviations of the innovation (``None``: fixed radius ``gate_px``).
     gate_max_px
         Largest association radius (pixels, ≥ ``gate_px``).
+    hold_after
+        Track maintenance (not in the paper): after this many consecutive frames without an
+        associated measurement the velocity and acceleration states are set to zero, so the
+        estimate holds the last position instead of running away along an extrapolated
+        parabola; the star is re-acquired when it reappears inside the (grown) gate.
+        ``None`` disables it (pure prediction for ever).
     c_img
         One ``(n_i,)`` array of image confidences per frame (default: all 1).
 
@@ -865,6 +880,8 @@ def track_nearest(filt: KalmanFilter, detections: Sequence[np.ndarray], *,
     gate0 = check_positive(gate_px, "gate_px")
     gs = None if gate_sigma is None else check_positive(gate_sigma, "gate_sigma")
     gmax = check_positive(gate_max_px, "gate_max_px")
+    hold = None if hold_after is None else check_int(hold_after, "hold_after", min_value=1)
+    missed = 0
     if gmax < gate0:
         raise ValueError(f"gate_max_px must be >= gate_px, got {gate_max_px} < {gate_px}")
     n = len(detections)
@@ -900,6 +917,10 @@ def track_nearest(filt: KalmanFilter, detections: Sequence[np.ndarray], *,
                 innov[k] = z - pp
                 Ss[k] = S
         modes[k] = filt.update(z, ci)
+        missed = missed + 1 if modes[k] == FilterMode.PREDICT else 0
+        if hold is not None and missed >= hold:
+            filt.x = filt.x.copy()
+            filt.x[m:] = 0.0
         if filt.adaptive and z is not None:
             conf[k] = filt.last_confidence
         xs[k] = filt.x

@@ -92,11 +92,13 @@ def hough_accumulator(xy: np.ndarray, d_rho: float = 1.0, d_theta_deg: float = 1
     n_theta = max(1, math.ceil(180.0 / dth - 1e-9))
     theta = (np.arange(n_theta) + 0.5) * math.radians(dth)
     theta = np.minimum(theta, math.pi - 1e-12)
-    n_rho = int(math.ceil(2 * rmax / dr)) + 1
+    n_rho = math.ceil(2 * rmax / dr) + 1
     edges = -rmax + dr * np.arange(n_rho + 1)
-    rho = p[:, :1] * np.cos(theta)[None, :] + p[:, 1:] * np.sin(theta)[None, :]
-    bins = np.clip(np.floor((rho + rmax) / dr).astype(np.int64), 0, n_rho - 1)
-    flat = bins * n_theta + np.arange(n_theta)[None, :]
+    # ρ + rmax ≥ 0, so truncation is the floor; fold the shift and the scale into one product
+    cs = np.stack([np.cos(theta), np.sin(theta)]) / dr
+    bins = (p @ cs + rmax / dr).astype(np.int32)
+    np.minimum(bins, n_rho - 1, out=bins)
+    flat = bins * n_theta + np.arange(n_theta, dtype=np.int32)[None, :]
     votes = np.bincount(flat.ravel(), minlength=n_rho * n_theta).reshape(n_rho, n_theta)
     return HoughAccumulator(votes=votes, rho_edges=edges, theta=theta, bins=bins)
 

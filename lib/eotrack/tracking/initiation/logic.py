@@ -92,7 +92,7 @@ class LogicInitiator:
         return _LogicRun(self, xys, np.array([f.time_s for f in fr])).run(perms)
 
 
-def AngleConstrainedLogicInitiator(n: int = 3, m: int = 4, *, min_angle_deg: float = 90.0,  # noqa: N802
+def AngleConstrainedLogicInitiator(n: int = 3, m: int = 4, *, min_angle_deg: float = 90.0,
                                    **kw) -> LogicInitiator:
     """The angle-constrained logic initiator: :class:`LogicInitiator` with ``min_angle_deg=90``."""
     return LogicInitiator(n=n, m=m, min_angle_deg=min_angle_deg, **kw)

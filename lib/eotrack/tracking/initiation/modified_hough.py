@@ -42,7 +42,7 @@ import numpy as np
 from eotrack.validation import check_int, check_positive
 
 from .base import Frame, Track, validate_frames
-from .gating import TrackHandOff, canonical_order, check_velocity_gate, fit_constant_velocity
+from .gating import TrackHandOff, canonical_order, check_velocity_gate
 
 __all__ = ["ModifiedHoughInitiator", "ModifiedHoughRun", "line_through_points"]
 
@@ -82,7 +82,8 @@ class ModifiedHoughRun:
     """Result of :meth:`ModifiedHoughInitiator.run`: the tracks and a per-frame log.
 
     ``log`` has one dict per frame with ``frame``, ``time_s``, ``candidates`` (detections left
-    for initiation after hand-off), ``pairs`` (velocity-gated pairs), ``created`` (cells that
+    for initiation after hand-off), ``pairs`` (velocity-gated pairs), ``rejected`` (pairs
+    removed by the velocity gate), ``created`` (cells that
     received their first vote), ``destroyed`` (cells whose votes all expired or were purged,
     without being confirmed), ``confirmed`` (tracks confirmed) and ``tentative`` (cells holding
     votes after the frame).
@@ -181,17 +182,35 @@ class ModifiedHoughInitiator:
         return float(rho[0]), float(np.degrees(theta[0])), float(v[0]), int(s[0])
 
 
+def _cv_residuals(t: np.ndarray, xy: np.ndarray) -> np.ndarray:
+    """Squared residuals of a least-squares constant-velocity fit (no input checks; internal)."""
+    tc = t - t.mean()
+    den = float(tc @ tc)
+    pm = xy.mean(axis=0)
+    v = tc @ (xy - pm) / den if den > 0 else np.zeros(2)
+    r = xy - pm - np.outer(tc, v)
+    return r[:, 0] ** 2 + r[:, 1] ** 2
+
+
 def _pair_params(a: np.ndarray, b: np.ndarray, dt: float | np.ndarray):
     """ρ, θ (rad, [0, π)), speed and direction s (±1) of pairs a → b."""
-    dx = b[:, 0] - a[:, 0]
-    dy = b[:, 1] - a[:, 1]
-    theta = np.mod(np.arctan2(dy, dx) + np.pi / 2, np.pi)
-    c, s_ = np.cos(theta), np.sin(theta)
+    return _pair_params_d(b[:, 0] - a[:, 0], b[:, 1] - a[:, 1], b, dt)
+
+
+def _pair_params_d(dx: np.ndarray, dy: np.ndarray, b: np.ndarray, dt: float | np.ndarray):
+    """:func:`_pair_params` from the displacements ``(dx, dy)`` and the end points ``b``."""
+    length = np.hypot(dx, dy)
+    # unit normal (cos θ, sin θ) = ±(−dy, dx)/|Δ|, flipped so that θ ∈ [0, π)
+    flip = (dx < 0) | ((dx == 0) & (dy > 0))
+    with np.errstate(invalid="ignore", divide="ignore"):
+        c = np.where(flip, dy, -dy) / length
+        s_ = np.where(flip, -dx, dx) / length
+    theta = np.arctan2(s_, c)
+    theta = np.where(theta >= np.pi, 0.0, theta)
     rho = b[:, 0] * c + b[:, 1] * s_
     along = dx * s_ - dy * c  # Δ · u(θ), u = (sin θ, −cos θ)
     sign = np.where(along >= 0, 1, -1)
-    v = np.hypot(dx, dy) / dt
-    return rho, theta, v, sign
+    return rho, theta, length / dt, sign
 
 
 class _Engine:
@@ -316,22 +335,25 @@ class _Engine:
         window = self._bits(k - self.m + 1, k)
         keys_all, fa_all, da_all, db_all = [], [], [], []
         idx_k = np.flatnonzero(avail_k)
+        n_tried = 0
         for back in (1, 2):
             j = k - back
             if j < 0 or len(idx_k) == 0:
                 continue
             idx_j = np.flatnonzero(self.available[j])
+            n_tried += len(idx_j) * len(idx_k)
             if len(idx_j) == 0:
                 continue
             a = self.xys[j][idx_j]
             b = xy_k[idx_k]
             dt = self.times[k] - self.times[j]
-            d = (b[None, :, :] - a[:, None, :])
-            v2 = (d[..., 0] ** 2 + d[..., 1] ** 2) / (dt * dt)
-            ia, ib = np.nonzero((v2 >= cfg.v_min ** 2) & (v2 <= cfg.v_max ** 2))
+            dx = b[None, :, 0] - a[:, None, 0]
+            dy = b[None, :, 1] - a[:, None, 1]
+            d2 = dx * dx + dy * dy
+            ia, ib = np.nonzero((d2 >= (cfg.v_min * dt) ** 2) & (d2 <= (cfg.v_max * dt) ** 2))
             if len(ia) == 0:
                 continue
-            rho, theta, v, s = _pair_params(a[ia], b[ib], dt)
+            rho, theta, v, s = _pair_params_d(dx[ia, ib], dy[ia, ib], b[ib], dt)
             key = self._key(*self._indices(rho, theta, v, s))
             keys_all.append(key)
             fa_all.append(np.full(len(ia), j, dtype=np.int64))
@@ -361,7 +383,8 @@ class _Engine:
             tentative = int(np.count_nonzero(self.acc & nxt))
             destroyed = self.tentative_prev + created - n_conf["cells"] - tentative
             self.log.append({"frame": k, "time_s": float(self.times[k]),
-                             "candidates": int(len(idx_k)), "pairs": int(len(keys)),
+                             "candidates": len(idx_k), "pairs": len(keys),
+                             "rejected": n_tried - len(keys),
                              "created": created, "destroyed": max(destroyed, 0),
                              "confirmed": n_conf["tracks"], "tentative": tentative})
             self.tentative_prev = tentative
@@ -411,10 +434,10 @@ class _Engine:
             pts = self._points_of(sub, cells, lo)
             if len(np.unique(pts[:, 0])) < need:
                 continue
-            if t2 >= 0 and not self._line_close(sub, int(t), int(t2), lo):
-                continue
             hits = self._choose_hits(pts, int(t))
             if len(hits) < need:
+                continue
+            if t2 >= 0 and not self._line_close(sub, int(t), int(t2), lo):
                 continue
             rho, theta, v, s = self._centre(int(t))
             self.handoff.confirm(hits, k, self.fw,
@@ -499,10 +522,7 @@ class _Engine:
             return [(int(f), int(d)) for f, d in pts] if self._consistent(pts, cell) else []
         groups = [np.flatnonzero(pts[:, 0] == f) for f in frames_u]
         if np.prod(counts.astype(float)) > 256:
-            t = self.times[pts[:, 0]]
-            xy = self.xy_flat[self.off[pts[:, 0]] + pts[:, 1]]
-            pm, v = fit_constant_velocity(t, xy)
-            res = np.hypot(*(xy - (pm + np.outer(t - t.mean(), v))).T)
+            res = _cv_residuals(self.times[pts[:, 0]], self.xy_flat[self.off[pts[:, 0]] + pts[:, 1]])
             groups = [g[np.argsort(res[g], kind="stable")[:2]] for g in groups]
         options = [groups]
         if len(groups) > self.need:
@@ -522,10 +542,8 @@ class _Engine:
 
     def _cv_rss(self, hits: np.ndarray) -> float:
         """Residual sum of squares of a constant-velocity fit through ``hits``."""
-        t = self.times[hits[:, 0]]
-        xy = self.xy_flat[self.off[hits[:, 0]] + hits[:, 1]]
-        pm, v = fit_constant_velocity(t, xy)
-        return float(np.sum((xy - (pm + np.outer(t - t.mean(), v))) ** 2))
+        return float(np.sum(_cv_residuals(self.times[hits[:, 0]],
+                                          self.xy_flat[self.off[hits[:, 0]] + hits[:, 1]])))
 
     def _consistent(self, hits: np.ndarray, cell: int) -> bool:
         """Hits (sorted by frame) form one constant-velocity track of ``cell``.
@@ -536,10 +554,8 @@ class _Engine:
         if len(hits) < 2:
             return False
         if len(hits) > 2:
-            t = self.times[hits[:, 0]]
-            xy = self.xy_flat[self.off[hits[:, 0]] + hits[:, 1]]
-            pm, vel = fit_constant_velocity(t, xy)
-            r2 = np.sum((xy - (pm + np.outer(t - t.mean(), vel))) ** 2, axis=1)
+            r2 = _cv_residuals(self.times[hits[:, 0]],
+                               self.xy_flat[self.off[hits[:, 0]] + hits[:, 1]])
             if np.max(r2) > (0.5 * self.cfg.d_rho) ** 2:
                 return False
         xy = self.xy_flat[self.off[hits[:, 0]] + hits[:, 1]]
