@@ -11,10 +11,11 @@ from pathlib import Path
 
 import jupytext
 
-root = Path(__file__).resolve().parents[1] / "notebooks"
+top = Path(__file__).resolve().parents[1] / "notebooks"
 problems = []
-pys = {p.stem: p for p in (root / "py").glob("*.py")}
-nbs = {p.stem: p for p in root.glob("*.ipynb")}
+# notebooks/X.ipynb <-> notebooks/py/X.py and notebooks/solutions/X.ipynb <-> .../solutions/py/X.py
+pys = {p.stem: p for d in (top, top / "solutions") for p in (d / "py").glob("*.py")}
+nbs = {p.stem: p for d in (top, top / "solutions") for p in d.glob("*.ipynb")}
 for stem in sorted(set(pys) | set(nbs)):
     if stem not in pys:
         problems.append(f"notebooks/{stem}.ipynb has no twin notebooks/py/{stem}.py")
@@ -35,4 +36,4 @@ for stem in sorted(set(pys) | set(nbs)):
 if problems:
     print("notebook twins out of sync:\n  " + "\n  ".join(problems))
     sys.exit(1)
-print(f"notebook twins in sync ({len(pys)} notebooks)")
+print(f"notebook twins in sync ({len(pys)} notebooks, solutions included)")

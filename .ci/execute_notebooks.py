@@ -15,11 +15,16 @@ import jupytext
 import nbformat
 from nbclient import NotebookClient
 
-root = Path(__file__).resolve().parents[1] / "notebooks"
-stems = sys.argv[1:] or sorted(p.stem for p in (root / "py").glob("*.py"))
+top = Path(__file__).resolve().parents[1] / "notebooks"
+# notebooks/py/X.py -> notebooks/X.ipynb; notebooks/solutions/py/X.py -> notebooks/solutions/X.ipynb
+sources = {p.stem: p for d in (top, top / "solutions") for p in sorted((d / "py").glob("*.py"))}
+stems = sys.argv[1:] or sorted(sources)
 env_backend = os.environ.pop("MPLBACKEND", None)  # never let Agg reach the kernel
 for stem in stems:
-    src = root / "py" / f"{stem}.py"
+    if stem not in sources:
+        sys.exit(f"no notebook source named {stem!r}; known: {sorted(sources)}")
+    src = sources[stem]
+    root = src.parent.parent
     nb = jupytext.read(src)
     nb.metadata["kernelspec"] = {"display_name": "Python 3", "language": "python",
                                  "name": "python3"}

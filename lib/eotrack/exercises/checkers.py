@@ -1,0 +1,205 @@
+"""Answer checkers: numbers with a tolerance, arrays, functions on hidden inputs, choices.
+
+The expected value is given as a zero-argument callable computed with the library on first
+use (so importing a paper's exercises is cheap and no result is typed in), or as a constant
+where the answer is a definition (a choice, a formula's exponent).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+__all__ = ["ArrayAnswer", "CheckResult", "Checker", "Choice", "FunctionAnswer",
+           "NumericAnswer"]
+
+
+@dataclass(frozen=True)
+class CheckResult:
+    """The verdict on one answer; truthy when right. Its text never contains the solution."""
+
+    exercise: str
+    correct: bool
+    message: str
+
+    def __bool__(self) -> bool:
+        return self.correct
+
+    def __str__(self) -> str:
+        mark = "✓ right" if self.correct else "✗ not yet"
+        return f"{self.exercise}: {mark} — {self.message}"
+
+    def _repr_markdown_(self) -> str:
+        mark = "✅ **right**" if self.correct else "❌ **not yet**"
+        return f"{self.exercise}: {mark} — {self.message}"
+
+
+def _resolve(expected: Any) -> Any:
+    return expected() if callable(expected) else expected
+
+
+class _Lazy:
+    """Compute the expected value once, on first use."""
+
+    def __init__(self, expected: Any) -> None:
+        self._src = expected
+        self._done = False
+        self._value: Any = None
+
+    def get(self) -> Any:
+        if not self._done:
+            self._value = _resolve(self._src)
+            self._done = True
+        return self._value
+
+
+@dataclass
+class Checker:
+    """Base class: ``question`` says what is asked, ``hint`` is shown when the answer is wrong."""
+
+    question: str
+    hint: str = "check your derivation against the notebook's section on this step"
+    expects: str = "an answer"
+    exercise: str = field(default="", init=False)
+
+    def validate(self, answer: Any) -> Any:  # pragma: no cover - overridden
+        return answer
+
+    def judge(self, answer: Any) -> bool:  # pragma: no cover - overridden
+        raise NotImplementedError
+
+    def __call__(self, answer: Any) -> CheckResult:
+        value = self.validate(answer)
+        ok = bool(self.judge(value))
+        msg = "well done." if ok else f"hint: {self.hint}"
+        return CheckResult(self.exercise, ok, msg)
+
+
+def _as_float(answer: Any, what: str) -> float:
+    if isinstance(answer, bool) or not isinstance(answer, int | float | np.integer | np.floating):
+        if isinstance(answer, np.ndarray) and answer.shape == ():
+            answer = answer.item()
+        else:
+            raise TypeError(f"expected {what}: a single real number, got "
+                            f"{type(answer).__name__}")
+    x = float(answer)
+    if not np.isfinite(x):
+        raise ValueError(f"expected {what}: a finite number, got {x!r}")
+    return x
+
+
+@dataclass
+class NumericAnswer(Checker):
+    """A single number, right within ``rtol``/``atol`` of the expected value."""
+
+    expected: Any = None
+    rtol: float = 1e-3
+    atol: float = 0.0
+    expects: str = "a number"
+
+    def __post_init__(self) -> None:
+        if self.expected is None:
+            raise ValueError("NumericAnswer needs expected (a number or a callable)")
+        self._lazy = _Lazy(self.expected)
+
+    def validate(self, answer: Any) -> float:
+        return _as_float(answer, self.expects)
+
+    def judge(self, answer: float) -> bool:
+        exp = float(self._lazy.get())
+        return bool(np.isclose(answer, exp, rtol=self.rtol, atol=self.atol))
+
+
+@dataclass
+class ArrayAnswer(Checker):
+    """An array of a given shape, right element-wise within ``rtol``/``atol``."""
+
+    expected: Any = None
+    rtol: float = 1e-3
+    atol: float = 0.0
+    expects: str = "an array"
+
+    def __post_init__(self) -> None:
+        if self.expected is None:
+            raise ValueError("ArrayAnswer needs expected (an array or a callable)")
+        self._lazy = _Lazy(self.expected)
+
+    def validate(self, answer: Any) -> np.ndarray:
+        exp = np.asarray(self._lazy.get(), dtype=float)
+        try:
+            a = np.asarray(answer, dtype=float)
+        except (TypeError, ValueError):
+            raise TypeError(f"expected {self.expects}: numbers of shape {exp.shape}, got "
+                            f"{type(answer).__name__}") from None
+        if a.shape != exp.shape:
+            raise ValueError(f"expected {self.expects} of shape {exp.shape}, got shape "
+                             f"{a.shape}")
+        if not np.all(np.isfinite(a)):
+            raise ValueError(f"expected {self.expects}: finite numbers only (found NaN/inf)")
+        return a
+
+    def judge(self, answer: np.ndarray) -> bool:
+        exp = np.asarray(self._lazy.get(), dtype=float)
+        return bool(np.allclose(answer, exp, rtol=self.rtol, atol=self.atol))
+
+
+@dataclass
+class FunctionAnswer(Checker):
+    """A function, run on hidden inputs and compared with the reference implementation.
+
+    ``inputs`` is a callable returning a list of argument tuples; ``reference`` computes the
+    right output for each.
+    """
+
+    reference: Callable[..., Any] | None = None
+    inputs: Callable[[], Sequence[tuple]] | None = None
+    rtol: float = 1e-6
+    atol: float = 1e-9
+    expects: str = "a function"
+
+    def __post_init__(self) -> None:
+        if self.reference is None or self.inputs is None:
+            raise ValueError("FunctionAnswer needs reference and inputs")
+
+    def validate(self, answer: Any) -> Callable[..., Any]:
+        if not callable(answer):
+            raise TypeError(f"expected {self.expects} (a callable), got {type(answer).__name__}")
+        return answer
+
+    def judge(self, answer: Callable[..., Any]) -> bool:
+        for args in self.inputs():
+            want = np.asarray(self.reference(*args), dtype=float)
+            try:
+                got = np.asarray(answer(*args), dtype=float)
+            except Exception:  # the student's function failed on a hidden input: wrong
+                return False
+            if got.shape != want.shape or not np.allclose(got, want, rtol=self.rtol,
+                                                          atol=self.atol):
+                return False
+        return True
+
+
+@dataclass
+class Choice(Checker):
+    """One option among ``options`` (compared case-insensitively for strings)."""
+
+    options: Sequence[Any] = ()
+    answer: Any = None
+    expects: str = "one of the options"
+
+    def __post_init__(self) -> None:
+        if not self.options or self.answer not in self.options:
+            raise ValueError("Choice needs options and an answer among them")
+
+    def validate(self, answer: Any) -> Any:
+        norm = [str(o).strip().lower() for o in self.options]
+        key = str(answer).strip().lower()
+        if key not in norm:
+            raise ValueError(f"expected one of {list(self.options)}, got {answer!r}")
+        return self.options[norm.index(key)]
+
+    def judge(self, answer: Any) -> bool:
+        return answer == self.answer
