@@ -124,6 +124,10 @@ def test_monte_carlo_within_interval_of_exact():
     (lambda: hyp.track_detection(np.nan, 7, 5), "p_d"),
     (lambda: hyp.snr_to_pd(-1.0, 0.1), "snr"),
     (lambda: hyp.snr_to_pd(1.0, 1.1), "p_f"),
+    (lambda: hyp.clustering_threshold(1.1, 5, 1e-4), "p_f"),
+    (lambda: hyp.clustering_threshold(0.01, 4, 1e-4), "window"),
+    (lambda: hyp.clustering_threshold(0.01, 5, 0.0), "max_pfa"),
+    (lambda: hyp.clustering_threshold(0.01, 5, 1.5), "max_pfa"),
 ])
 def test_bad_input(call, match):
     with pytest.raises(ValueError, match=match):
@@ -135,3 +139,25 @@ def test_bad_types():
         hyp.area_false_alarm(0.1, 5, 2.5)
     with pytest.raises(TypeError, match="window"):
         hyp.area_false_alarm(0.1, 5.0, 2)
+
+
+def test_clustering_threshold_values():
+    assert hyp.clustering_threshold(0.003, 5, 1e-4) == 3
+    assert isinstance(hyp.clustering_threshold(0.003, 5, 1e-4), int)
+    np.testing.assert_array_equal(hyp.clustering_threshold([0.003, 0.03], 5, 1e-4), [3, 6])
+    assert hyp.clustering_threshold(1.0, 5, 0.5) == 26  # no S meets it: the test never fires
+    assert hyp.clustering_threshold(0.0, 5, 0.5) == 1
+    with pytest.raises(TypeError, match="window"):
+        hyp.clustering_threshold(0.01, 5.5, 1e-4)
+
+
+@settings(max_examples=80, deadline=None)
+@given(pf=st.floats(1e-6, 0.5), w=odd, q=st.floats(1e-12, 1.0))
+def test_clustering_threshold_is_the_smallest_s_meeting_the_requirement(pf, w, q):
+    s = hyp.clustering_threshold(pf, w, q)
+    n = w * w
+    assert 0 <= s <= n + 1
+    if s <= n:
+        assert hyp.area_false_alarm(pf, w, s) <= q
+    if s >= 1:
+        assert hyp.area_false_alarm(pf, w, s - 1) > q

@@ -37,6 +37,7 @@ __all__ = [
     "area_detection",
     "area_detection_exact",
     "area_false_alarm",
+    "clustering_threshold",
     "p1_paper",
     "sequence_detection",
     "snr_to_pd",
@@ -149,6 +150,48 @@ def area_false_alarm(p_f: Any, window: int, s: Any) -> float | np.ndarray:
     n = w * w
     ss = _ints(s, "s", lo=0, hi=n, hi_name="W_S = window**2")
     return _out(_tail(ss, n, pf), p_f, s)
+
+
+def clustering_threshold(p_f: Any, window: int, max_pfa: Any) -> int | np.ndarray:
+    """Smallest clustering threshold ``S`` whose area false-alarm probability is at most ``max_pfa``.
+
+    Inverts eq. (4): ``min {S : P(Binomial(W_S, P_F) ≥ S) ≤ max_pfa}``. ``P_FA`` falls with ``S``,
+    so this is the most permissive threshold (the best detection) that meets the false-alarm
+    requirement. If even ``S = W_S`` (every pixel of the window suspicious) has ``P_FA`` above
+    ``max_pfa``, no threshold meets it and ``W_S + 1`` is returned (the test never fires).
+
+    Parameters
+    ----------
+    p_f
+        Per-pixel false-alarm probability in [0, 1] (scalar or array).
+    window
+        Side ``2p + 1`` of the square neighbourhood (positive odd integer).
+    max_pfa
+        Required area false-alarm probability in (0, 1] (scalar or array, broadcast with
+        ``p_f``).
+
+    Returns
+    -------
+    int or numpy.ndarray
+        ``S`` (an ``int`` when both inputs are scalars).
+
+    Examples
+    --------
+    >>> clustering_threshold(0.003, 5, 1e-4)
+    3
+    """
+    pf = _prob(p_f, "p_f")
+    w = _odd_size(window, "window")
+    q = _prob(max_pfa, "max_pfa")
+    if np.any(q <= 0):
+        raise ValueError("max_pfa must be > 0 (P_FA = 0 needs S > W_S: the test never fires)")
+    n = w * w
+    s = np.arange(n + 1).reshape((-1,) + (1,) * np.broadcast(pf, q).ndim)
+    ok = _tail(s, n, pf) <= q  # (n + 1, ...): P_FA falls with S, so ok is monotone in S
+    first = np.where(ok.any(axis=0), np.argmax(ok, axis=0), n + 1)
+    if np.ndim(p_f) == 0 and np.ndim(max_pfa) == 0:
+        return int(first)
+    return first.astype(int)
 
 
 def p1_paper(p_d: Any, p_f: Any, window: int, target_pixels: int) -> float | np.ndarray:
