@@ -67,6 +67,41 @@ def test_sequence_numbers(rep):
     assert pfa["P_FA measured"].iloc[0] > 0.1
 
 
+def test_trial_counts_drive_the_run(rep):
+    n = exp.trial_counts(quick=True)
+    assert rep.settings == {"quick": True, **n.as_dict()}
+    assert rep.data["fig1"].mc_n_target == n.fig1_windows
+    assert rep.data["fig2"].mc_n == n.fig2_tracks
+    assert rep.data["sequences"]["n_runs"] == len(rep.data["sequences"]["runs"]) == n.sequences
+    assert f"{n.sequences} simulated" in rep.claims[2].ours
+    assert set(rep.data["sweep"]["runs"]) == {n.sweep_runs}
+    full = exp.trial_counts()
+    assert all(getattr(full, k) >= getattr(n, k) for k in n.as_dict())
+    with pytest.raises(TypeError, match="quick"):
+        exp.trial_counts(quick="yes")
+
+
+def test_monte_carlo_agrees_with_closed_forms(rep):
+    f1, f2 = rep.data["fig1"], rep.data["fig2"]
+    assert f1.agreement("exact") and f1.agreement("pfa")
+    assert f1.agreement("paper").fraction_inside < 0.5  # eq. (7) is not the pixel model
+    for which in ("pds", "pdt", "pft"):
+        assert f2.agreement(which)
+    with pytest.raises(ValueError, match="which"):
+        f1.agreement("eq7")
+    with pytest.raises(ValueError, match="which"):
+        f2.agreement("pda")
+
+
+def test_paper_beside_ours_table(rep):
+    t = rep.tables["Figs. 4-7: paper beside ours"]
+    ps = exp.paper_settings()
+    row = t[t["quantity"].str.startswith("CFAR")].iloc[0]
+    assert row["paper"] == ps["cfar_p_f"]
+    assert abs(row["ours − paper"]) < 0.01
+    assert np.allclose(t["ours − paper"].dropna(), (t["ours"] - t["paper"]).dropna())
+
+
 def test_initiator_against_formulas(rep):
     t = rep.tables["Beyond: the initiator against eqs. (12)-(13)"].set_index("P_F")
     lo, hi = t.iloc[0], t.iloc[-1]

@@ -1,0 +1,332 @@
+"""Figures of Li et al. (2008): one function per paper figure, plus the Explore panel's figure.
+
+Each takes ``ax=None`` (or ``fig=None`` for multi-panel figures) and returns the axes or figure;
+none calls ``plt.show()``.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import matplotlib.pyplot as plt
+import numpy as np
+import pandas as pd
+from matplotlib.patches import Rectangle
+
+from eotrack.plotting import get_ax
+from eotrack.tracking import hypothesis as hyp
+from eotrack.tracking.initiation.base import Frame
+
+from .trials import Fig1Result, Fig2Result
+
+__all__ = [
+    "explore_figure",
+    "plot_fig1",
+    "plot_fig2",
+    "plot_fig3",
+    "plot_fig4",
+    "plot_fig5",
+    "plot_fig6",
+    "plot_fig7",
+    "plot_initiator_vs_formulas",
+    "plot_measured_vs_formula",
+    "plot_schematic",
+    "plot_snr_sweep",
+]
+
+
+def plot_schematic(*, p_f: float = 0.2, window: int = 5, target_pixels: int = 4, s: int = 7,
+                   gate: int = 3, frames: int = 7, seed: int = 3,
+                   fig: plt.Figure | None = None) -> plt.Figure:
+    """The two tests drawn: a clustering window with its count ``D`` and a gate over ``T`` frames.
+
+    Left: one ``window × window`` box of a binary image — the target's pixels (hatched) and
+    random false alarms; the title gives ``D`` against ``S``. Right: a candidate followed
+    through ``T`` frames; in each frame the ``gate × gate`` association region (grey) around
+    the prediction holds a point (hit) or not (miss).
+    """
+    rng = np.random.default_rng(seed)
+    fig = fig or plt.figure(figsize=(10, 3.8))
+    a1, a2 = fig.subplots(1, 2, gridspec_kw={"width_ratios": [1, 2.2]})
+    n = window
+    fa = rng.random((n, n)) < p_f
+    tgt = np.zeros((n, n), dtype=bool)
+    c = n // 2
+    k = int(np.ceil(np.sqrt(target_pixels)))
+    idx = [(c + i - k // 2, c + j - k // 2) for i in range(k) for j in range(k)][:target_pixels]
+    for i, j in idx:
+        tgt[i, j] = True
+    det = tgt & (rng.random((n, n)) < 0.8)
+    g = det | fa
+    for i in range(n):
+        for j in range(n):
+            a1.add_patch(Rectangle((j, i), 1, 1, fc="k" if g[i, j] else "w", ec="0.6",
+                                   hatch="///" if tgt[i, j] else None))
+    a1.set_xlim(0, n)
+    a1.set_ylim(n, 0)
+    a1.set_aspect("equal")
+    a1.set_xticks([])
+    a1.set_yticks([])
+    d = int(g.sum())
+    a1.set_title(f"window {n}×{n} ($W_S$ = {n * n}): D = {d} "
+                 f"{'≥' if d >= s else '<'} S = {s}\nblack: suspicious, hatched: target",
+                 fontsize=9)
+    # temporal test: a target drifting right, detected in most frames
+    hits = rng.random(frames) < 0.75
+    hits[0] = True
+    x = np.arange(frames) * 1.6
+    for f in range(frames):
+        a2.add_patch(Rectangle((x[f] - gate / 2, -gate / 2), gate, gate, fc="0.88", ec="0.5"))
+        if hits[f]:
+            a2.plot(x[f] + rng.uniform(-0.3, 0.3), rng.uniform(-0.3, 0.3), "ko", ms=6)
+        a2.text(x[f], -gate / 2 - 0.5, f"k={f + 1}", ha="center", fontsize=8)
+    nh = int(hits.sum())
+    a2.set_xlim(-gate, x[-1] + gate)
+    a2.set_ylim(-gate, gate)
+    a2.set_aspect("equal")
+    a2.axis("off")
+    a2.set_title(f"gate {gate}×{gate} (M = {gate * gate}) over T = {frames} frames: "
+                 f"{nh} hits — a target track if ≥ $T_h$", fontsize=9)
+    fig.tight_layout()
+    return fig
+
+
+def plot_fig1(res: Fig1Result, *, s_max: int = 12, ax: plt.Axes | None = None) -> plt.Axes:
+    """Fig. 1: P_FA and P_DA versus S (lines: formulas; markers: Monte Carlo)."""
+    ax = get_ax(ax, figsize=(7.5, 4.6))
+    sel = res.s <= s_max
+    s = res.s[sel]
+    ax.semilogy(s, res.pfa[sel], "k-", lw=2, label="$P_{FA}$ eq. (4)")
+    ok = res.mc_pfa[sel] > 0
+    ax.plot(s[ok], res.mc_pfa[sel][ok], "kx", ms=7, label="$P_{FA}$ Monte Carlo")
+    colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    for j, snr in enumerate(res.snr):
+        c = colors[j % len(colors)]
+        ax.semilogy(s, res.pda_paper[j, sel], "-", color=c,
+                    label=f"$P_{{DA}}$ eq. (7), SNR {snr:g}")
+        ax.semilogy(s, res.pda_exact[j, sel], "--", color=c, label=f"exact count, SNR {snr:g}")
+        ok = res.mc_pda[j, sel] > 0
+        ax.plot(s[ok], res.mc_pda[j, sel][ok], "o", mfc="none", color=c, ms=5)
+    ax.plot([], [], "o", mfc="none", color="gray", label="Monte Carlo (pixels)")
+    ax.set_ylim(1e-9, 2)
+    ax.set_xlabel("clustering threshold S")
+    ax.set_ylabel("probability")
+    w = res.settings
+    ax.set_title(f"Fig. 1 — W_S = {w['window'] ** 2}, T_S = {w['target_pixels']}, "
+                 f"P_F = {w['p_f']:g}")
+    ax.legend(fontsize=7, ncol=2, loc="lower left")
+    return ax
+
+
+def plot_fig2(res: Fig2Result, *, t_h: tuple[int, ...] = (3, 4, 5, 6),
+              ax: plt.Axes | None = None) -> plt.Axes:
+    """Fig. 2: P_DS (solid) and P_DT (dashed) versus P_F for several T_h; markers Monte Carlo."""
+    ax = get_ax(ax, figsize=(7.0, 4.4))
+    colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    for c, th in zip(colors, t_h):
+        i = int(th) - 1
+        ax.semilogx(res.p_f, res.pds[i], "-", color=c, label=f"$P_{{DS}}$, $T_h$ = {th}")
+        ax.semilogx(res.p_f, res.pdt[i], "--", color=c, label=f"$P_{{DT}}$, $T_h$ = {th}")
+        ax.plot(res.p_f, res.mc_pds[i], "o", mfc="none", color=c, ms=4)
+        ax.plot(res.p_f, res.mc_pdt[i], "s", mfc="none", color=c, ms=4)
+    ax.plot([], [], "o", mfc="none", color="gray", label="Monte Carlo")
+    st = res.settings
+    ax.set_xlabel("single-frame false-alarm probability $P_F$")
+    ax.set_ylabel("probability")
+    ax.set_title(f"Fig. 2 — SNR {st['snr']:g}, M = {st['gate']}×{st['gate']}, "
+                 f"T = {st['frames']}")
+    ax.legend(fontsize=7, ncol=2)
+    return ax
+
+
+def plot_initiator_vs_formulas(df: pd.DataFrame, *, ax: plt.Axes | None = None) -> plt.Axes:
+    """The initiator's measured track probabilities beside eqs. (12)–(13)."""
+    ax = get_ax(ax, figsize=(6.0, 3.8))
+    ax.semilogx(df["P_F"], df["P_DS eq.12"], "C1-", label="$P_{DS}$ eq. (12)")
+    ax.semilogx(df["P_F"], df["track containing the target"], "C1o", mfc="none",
+                label="initiator: a track contains the target")
+    ax.semilogx(df["P_F"], df["P_DT eq.13"], "C2--", label="$P_{DT}$ eq. (13)")
+    ax.semilogx(df["P_F"], df["track with >= T_h target points"], "C2s", mfc="none",
+                label="initiator: a track holds $\\geq T_h$ target points")
+    ax.set_xlabel("single-frame $P_F$")
+    ax.set_ylabel("probability")
+    ax.set_title("The temporal-test initiator against eqs. (12)-(13)")
+    ax.legend(fontsize=7)
+    return ax
+
+def _truth_circles(ax: plt.Axes, truth: np.ndarray, frame: int) -> None:
+    for i in range(truth.shape[0]):
+        if np.isfinite(truth[i, frame, 0]):
+            ax.add_patch(plt.Circle(truth[i, frame], 7, fill=False, ec="w"))
+
+
+def _image_axes(ax: plt.Axes) -> None:
+    ax.set_xticks([])
+    ax.set_yticks([])
+
+
+def plot_fig3(run: dict[str, Any], frame: int, *, ax: plt.Axes | None = None) -> plt.Axes:
+    """Fig. 3: one raw frame of the simulated sequence, the targets circled."""
+    ax = get_ax(ax, figsize=(5.2, 5.2))
+    seq = run["seq"]
+    im = seq.images[frame]
+    lo, hi = np.percentile(im, [1, 99.5])
+    ax.imshow(im, vmin=lo, vmax=hi, cmap="gray")
+    _truth_circles(ax, seq.truth_xy, frame)
+    ax.set_title(f"Fig. 3 — frame {frame}, fluctuating background (targets circled)",
+                 fontsize=9)
+    _image_axes(ax)
+    return ax
+
+
+def plot_fig4(run: dict[str, Any], frame: int, *, p_f: float, ax: plt.Axes | None = None
+              ) -> plt.Axes:
+    """Fig. 4: the CFAR-segmented frame ``G`` (white: above the threshold)."""
+    ax = get_ax(ax, figsize=(5.2, 5.2))
+    g = run["binary"][frame]
+    ax.imshow(g, interpolation="nearest", cmap="gray")
+    _truth_circles(ax, run["seq"].truth_xy, frame)
+    ax.set_title(f"Fig. 4 — CFAR segmentation at $P_F$ = {p_f:g}: {int(g.sum())} pixels set",
+                 fontsize=9)
+    _image_axes(ax)
+    return ax
+
+
+def plot_fig5(run: dict[str, Any], frame: int, *, window: int, s: int,
+              ax: plt.Axes | None = None) -> plt.Axes:
+    """Fig. 5: the frame after spatial clustering (``D ≥ S`` in a ``window²`` box)."""
+    ax = get_ax(ax, figsize=(5.2, 5.2))
+    c = run["clustered"][frame]
+    ax.imshow(c, interpolation="nearest", cmap="gray")
+    _truth_circles(ax, run["seq"].truth_xy, frame)
+    ax.set_title(f"Fig. 5 — clustered, $W_S$ = {window}×{window}, S = {s}: "
+                 f"{int(c.sum())} pixels left", fontsize=9)
+    _image_axes(ax)
+    return ax
+
+
+def _tracks(ax: plt.Axes, run: dict[str, Any], *, false_color: str = "r") -> None:
+    fr_objs = [Frame(t, xy) for t, xy in run["frames"]]
+    for tr, o in zip(run["tracks"], run["owner"]):
+        p = tr.positions(fr_objs)
+        ax.plot(p[:, 0], p[:, 1], ".-", ms=3, lw=1.2,
+                color=f"C{int(o) % 10}" if o >= 0 else false_color)
+
+
+def plot_fig6(run: dict[str, Any], *, gate: int, frames: int, min_hits: int,
+              ax: plt.Axes | None = None) -> plt.Axes:
+    """Fig. 6: the candidate points of all frames and the tracks the temporal test confirms."""
+    ax = get_ax(ax, figsize=(5.6, 5.6))
+    acc = run["clustered"].max(axis=0)
+    ax.imshow(acc, interpolation="nearest", cmap="gray_r", vmin=0, vmax=3)
+    _tracks(ax, run)
+    owner = run["owner"]
+    n_fr = run["binary"].shape[0]
+    ax.set_xlim(0, acc.shape[1])
+    ax.set_ylim(acc.shape[0], 0)
+    ax.set_title(f"Fig. 6 — {n_fr} frames, M = {gate}×{gate}, T = {frames}, $T_h$ = {min_hits}:"
+                 f"\n{int(np.sum(owner >= 0))} target track(s), {int(np.sum(owner < 0))} false "
+                 "(red); grey: clustered pixels of all frames", fontsize=9)
+    _image_axes(ax)
+    return ax
+
+
+def plot_fig7(runs: dict[str, dict[str, Any]], *, fig: plt.Figure | None = None) -> plt.Figure:
+    """Fig. 7: confirmed tracks against the true paths (dotted), one panel per labelled run."""
+    fig = fig or plt.figure(figsize=(5.2 * len(runs), 5.2))
+    axs = np.atleast_1d(fig.subplots(1, len(runs)))
+    for ax, (label, run) in zip(axs, runs.items()):
+        truth = run["seq"].truth_xy
+        for i in range(truth.shape[0]):
+            ax.plot(truth[i, :, 0], truth[i, :, 1], ":", color="0.5", lw=1.5)
+        _tracks(ax, run)
+        cov = run["coverage"]
+        h, w = run["binary"].shape[1:]
+        ax.set_xlim(0, w)
+        ax.set_ylim(h, 0)
+        ax.set_aspect("equal")
+        ax.set_title(f"Fig. 7 — {label}\ncoverage: " + ", ".join(
+            f"target {i} {c:.0%}" for i, c in enumerate(cov)), fontsize=9)
+    fig.tight_layout()
+    return fig
+
+
+def plot_measured_vs_formula(exp: dict[str, Any], *, ax: plt.Axes | None = None) -> plt.Axes:
+    """Measured P_FA(S) and P_FT(T_h) on the sequences beside eqs. (4) and (9)."""
+    ax = get_ax(ax, figsize=(6.4, 4.0))
+    t = exp["pfa_table"]
+    ax.semilogy(t["S"], t["P_FA eq.4 (measured P_F)"], "k-", label="$P_{FA}$ eq. (4) vs S")
+    m = t["P_FA measured"] > 0
+    ax.semilogy(t["S"][m], t["P_FA measured"][m], "ko", mfc="none", label="measured vs S")
+    f = exp["pft_table"]
+    ax.semilogy(f["T_h"], f["P_FT eq.9 (measured candidate P_F)"], "C3-",
+                label="$P_{FT}$ eq. (9) vs $T_h$")
+    m = f["P_FT measured (fixed gate)"] > 0
+    ax.semilogy(f["T_h"][m], f["P_FT measured (fixed gate)"][m], "C3s", mfc="none",
+                label="measured vs $T_h$")
+    ax.set_ylim(1e-12, 1.5)
+    ax.set_xlabel("S (clustering) or $T_h$ (temporal)")
+    ax.set_ylabel("probability")
+    ax.set_title("Sequences: measured false-alarm rates vs formulas")
+    ax.legend(fontsize=7)
+    return ax
+
+
+def plot_snr_sweep(df: pd.DataFrame, *, ax: plt.Axes | None = None) -> plt.Axes:
+    """Recovery of the curved target versus SNR."""
+    ax = get_ax(ax, figsize=(5.5, 3.6))
+    ax.plot(df["SNR"], df["recovered (coverage >= 0.5)"], "o-", label="recovered runs")
+    ax.plot(df["SNR"], df["P_DA measured"], "s--", label="per-frame $P_{DA}$")
+    ax.set_xlabel("peak SNR of the curved 3×3 target")
+    ax.set_ylabel("fraction")
+    ax.set_ylim(-0.03, 1.03)
+    ax.set_title("Fig. 7 target: recovery versus SNR")
+    ax.legend(fontsize=8)
+    return ax
+
+
+def explore_figure(snr: float = 2.0, log10_p_f: float = -2.5, window: int = 5,
+                   target_pixels: int = 4, s: int = 4, gate: int = 3, frames: int = 7,
+                   min_hits: int = 5, show_eq7: bool = True) -> plt.Figure:
+    """The closed forms for one setting: Fig. 1 (left) and Fig. 2 at that ``P_F`` (right).
+
+    Left: ``P_FA`` (eq. 4) and ``P_DA`` (exact count; eq. 7 if ``show_eq7``) versus ``S``, the
+    chosen ``S`` marked. Right: ``P_DS``, ``P_DT``, ``P_FT`` (eqs. 12, 13, 9) versus ``T_h``,
+    the chosen ``T_h`` marked. Values that the controls make inconsistent are clipped
+    (``T_S, S ≤ W_S``; ``T_h ≤ T``). Closed forms only: no Monte Carlo, so it redraws at once.
+    """
+    p_f = 10.0 ** log10_p_f
+    n = window * window
+    target_pixels = min(target_pixels, n)
+    s = min(s, n)
+    min_hits = min(min_hits, frames)
+    p_d = float(hyp.snr_to_pd(snr, p_f))
+    fig, (a1, a2) = plt.subplots(1, 2, figsize=(11, 3.9))
+    ss = np.arange(1, n + 1)
+    pfa = hyp.area_false_alarm(p_f, window, ss)
+    exact = hyp.area_detection_exact(p_d, p_f, window, target_pixels, ss)
+    a1.semilogy(ss, pfa, "k-", label="$P_{FA}$ eq. (4)")
+    a1.semilogy(ss, exact, "C0-", lw=2, label="$P_{DA}$ exact count")
+    if show_eq7:
+        a1.semilogy(ss, hyp.area_detection(p_d, p_f, window, target_pixels, ss), "C3--",
+                    label="$P_{DA}$ eq. (7)")
+    a1.axvline(s, color="0.5", lw=0.8)
+    a1.set(ylim=(1e-12, 2), xlabel="clustering threshold S", ylabel="probability")
+    a1.set_title(f"SNR {snr:g} → $P_D$ = {p_d:.3f}; at S = {s}: $P_{{FA}}$ = {pfa[s - 1]:.1e}, "
+                 f"exact $P_{{DA}}$ = {exact[s - 1]:.3f}", fontsize=9)
+    a1.legend(fontsize=8, loc="lower left")
+    th = np.arange(1, frames + 1)
+    pds = hyp.sequence_detection(p_d, p_f, gate, frames, th)
+    pdt = hyp.track_detection(p_d, frames, th)
+    pft = hyp.track_false_alarm(p_f, gate, frames, th)
+    a2.semilogy(th, pds, "C1-o", label="$P_{DS}$ eq. (12)")
+    a2.semilogy(th, pdt, "C2--s", label="$P_{DT}$ eq. (13)")
+    a2.semilogy(th, pft, "k:", label="$P_{FT}$ eq. (9)")
+    a2.axvline(min_hits, color="0.5", lw=0.8)
+    a2.set(ylim=(1e-12, 2), xlabel="hits needed $T_h$")
+    i = min_hits - 1
+    a2.set_title(f"$P_F$ = {p_f:.2g}, gate {gate}×{gate}, T = {frames}; at $T_h$ = {min_hits}: "
+                 f"$P_{{DT}}$ = {pdt[i]:.3f}, $P_{{FT}}$ = {pft[i]:.1e}", fontsize=9)
+    a2.legend(fontsize=8, loc="lower left")
+    fig.tight_layout()
+    return fig
