@@ -19,7 +19,15 @@ from .frames import (  # noqa: E402
     topocentric_azel,
     topocentric_radec,
 )
-from .shadow import PENUMBRA, SUNLIT, UMBRA, earth_shadow, sun_position_gcrs  # noqa: E402
+from .shadow import (  # noqa: E402
+    PENUMBRA,
+    SUNLIT,
+    UMBRA,
+    earth_shadow,
+    shadow_intervals,
+    sun_position_approx,
+    sun_position_gcrs,
+)
 from .tle import GEO_NORAD_IDS, propagate_teme, satellite, tle_epoch, verification_tles  # noqa: E402
 
 __all__ = [
@@ -35,8 +43,10 @@ __all__ = [
     "load_catalog",
     "propagate_teme",
     "radec_from_vector",
+    "shadow_intervals",
     "satellite",
     "stars_in_field",
+    "sun_position_approx",
     "sun_position_gcrs",
     "teme_to_gcrs",
     "teme_to_itrs",

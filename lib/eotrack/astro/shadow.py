@@ -5,6 +5,11 @@ angular radii of the Sun ``a = asin(R_sun/|s − r|)`` and of the Earth ``b = as
 seen from the satellite, and ``c`` the angle between the directions to the Earth's and the Sun's
 centres, the satellite is in umbra when ``c < b − a``, in penumbra when ``|a − b| < c < a + b``,
 sunlit otherwise.
+
+For scanning weeks of orbit quickly, :func:`sun_position_approx` gives the Sun from the
+low-precision formulae of the Astronomical Almanac (≈ 0.01°, mean equator and equinox of date,
+which TEME matches to within nutation), and :func:`shadow_intervals` turns a sequence of shadow
+states into the index ranges of the separate shadow passes.
 """
 
 from __future__ import annotations
@@ -16,8 +21,10 @@ from astropy.time import Time
 
 from eotrack.validation import as_finite_array
 
-__all__ = ["PENUMBRA", "R_EARTH_KM", "R_SUN_KM", "SUNLIT", "UMBRA", "earth_shadow",
-           "sun_position_gcrs"]
+__all__ = ["AU_KM", "PENUMBRA", "R_EARTH_KM", "R_SUN_KM", "SUNLIT", "UMBRA", "earth_shadow",
+           "shadow_intervals", "sun_position_approx", "sun_position_gcrs"]
+
+AU_KM = 149_597_870.7
 
 R_EARTH_KM = 6378.137
 R_SUN_KM = 695_700.0
@@ -31,6 +38,55 @@ def sun_position_gcrs(times: Time) -> np.ndarray:
     t = times if times.ndim else times.reshape((1,))
     sun = get_body("sun", t)
     return sun.cartesian.xyz.to_value(u.km).T
+
+
+def sun_position_approx(jd_ut1: np.ndarray) -> np.ndarray:
+    """Geocentric Sun position (km), ``(n, 3)``, low precision (≈ 0.01°), equator of date.
+
+    Astronomical Almanac low-precision formulae (Vallado, *Fundamentals of Astrodynamics*,
+    Alg. 29). Fast and vectorised: for scanning long spans for shadow passes; use
+    :func:`sun_position_gcrs` where accuracy matters.
+
+    Parameters
+    ----------
+    jd_ut1
+        Julian dates (UT1 ≈ UTC is good enough here), any shape; flattened.
+    """
+    jd = np.ravel(as_finite_array(jd_ut1, "jd_ut1"))
+    tc = (jd - 2451545.0) / 36525.0
+    lam_m = np.radians((280.460 + 36000.771 * tc) % 360.0)
+    m = np.radians((357.5291092 + 35999.05034 * tc) % 360.0)
+    lam = lam_m + np.radians(1.914666471 * np.sin(m) + 0.019994643 * np.sin(2 * m))
+    eps = np.radians(23.439291 - 0.0130042 * tc)
+    r = (1.000140612 - 0.016708617 * np.cos(m) - 0.000139589 * np.cos(2 * m)) * AU_KM
+    return np.stack([r * np.cos(lam), r * np.cos(eps) * np.sin(lam),
+                     r * np.sin(eps) * np.sin(lam)], axis=1)
+
+
+def shadow_intervals(states: np.ndarray, min_state: int = PENUMBRA) -> np.ndarray:
+    """Index ranges ``[start, stop)`` of the contiguous runs with ``states >= min_state``.
+
+    Parameters
+    ----------
+    states
+        Shadow states ``(n,)`` from :func:`earth_shadow`.
+    min_state
+        ``PENUMBRA`` (any shadow, default) or ``UMBRA``.
+
+    Returns
+    -------
+    numpy.ndarray
+        Integer array ``(k, 2)``; ``k = 0`` when the satellite is never in shadow.
+    """
+    st = np.asarray(states)
+    if st.ndim != 1:
+        raise ValueError(f"states must be 1-D, got shape {st.shape}")
+    if min_state not in (PENUMBRA, UMBRA):
+        raise ValueError(f"min_state must be PENUMBRA ({PENUMBRA}) or UMBRA ({UMBRA}), "
+                         f"got {min_state!r}")
+    on = np.r_[False, st >= min_state, False].astype(np.int8)
+    d = np.diff(on)
+    return np.stack([np.flatnonzero(d == 1), np.flatnonzero(d == -1)], axis=1)
 
 
 def earth_shadow(r_sat_km: np.ndarray, r_sun_km: np.ndarray) -> np.ndarray:

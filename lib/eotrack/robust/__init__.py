@@ -11,6 +11,7 @@ from .losses import (
     sinusoidal_loss_as_printed,
     zero_one_loss,
 )
+from .mestimators import M_ESTIMATORS, irls_linear, m_weights
 from .models import (
     SIDEREAL_RATE_RAD_S,
     FreeSinusoid,
@@ -21,12 +22,23 @@ from .models import (
     fit_linear,
     predict_linear,
 )
-from .ransac import RansacResult, draw_samples, ransac, ransac_linear, wransac_linear
+from .ransac import (
+    REFITS,
+    WEIGHTED_REFITS,
+    RansacResult,
+    draw_samples,
+    ransac,
+    ransac_linear,
+    wransac_linear,
+)
 from .sampling import min_samples, min_samples_real, success_probability
 
 __all__ = [
     "LOSSES",
+    "M_ESTIMATORS",
+    "REFITS",
     "SIDEREAL_RATE_RAD_S",
+    "WEIGHTED_REFITS",
     "FreeSinusoid",
     "LinearModel",
     "Polynomial",
@@ -36,7 +48,9 @@ __all__ = [
     "fit_free_sinusoid",
     "fit_linear",
     "get_loss",
+    "irls_linear",
     "loss_weights",
+    "m_weights",
     "min_samples",
     "min_samples_real",
     "msac_loss",

@@ -158,6 +158,13 @@ def fit_linear(model: LinearModel, x: np.ndarray, y: np.ndarray,
     return theta
 
 
+def _wls(a: np.ndarray, y: np.ndarray, w: np.ndarray) -> np.ndarray:
+    """Weighted least squares on a prepared design (no validation; hot loops only)."""
+    sw = np.sqrt(w)
+    theta, *_ = np.linalg.lstsq(a * sw[:, None], y * sw, rcond=None)
+    return theta
+
+
 def predict_linear(model: LinearModel, theta: np.ndarray, x: np.ndarray) -> np.ndarray:
     """Model values ``A(x) θ``; ``theta`` may be a batch ``(k, n_params)`` → ``(k, n)``."""
     _check_model(model)
@@ -207,6 +214,11 @@ def fit_free_sinusoid(t: np.ndarray, y: np.ndarray, *,
     def resid(p: np.ndarray) -> np.ndarray:
         return p[0] * np.sin(p[1] * w0 * tau + p[2]) + p[3] - yy
 
-    sol = least_squares(resid, p0, method="lm", x_scale="jac")
+    def jac(p: np.ndarray) -> np.ndarray:
+        arg = p[1] * w0 * tau + p[2]
+        c = p[0] * np.cos(arg)
+        return np.stack([np.sin(arg), c * w0 * tau, c, np.ones_like(tau)], axis=1)
+
+    sol = least_squares(resid, p0, jac=jac, method="lm", x_scale="jac")
     amp, k, ph, c0 = sol.x
     return FreeSinusoid(float(amp), float(k * w0), float(ph), float(c0), t_ref)

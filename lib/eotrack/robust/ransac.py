@@ -7,6 +7,19 @@ residual variance), and the final model is refitted on the best hypothesis's inl
 ordinary least squares (classic RANSAC) or by weighted least squares with weights from the loss
 (WRANSAC).
 
+Where the WRANSAC weights come from is not printed in the paper; three readings are offered
+(``weighting``):
+
+- ``"weighted"`` — from the residuals of the best minimal-sample *hypothesis* (the residuals
+  that chose the inlier set);
+- ``"weighted_refit"`` — one step: ordinary least squares on the inliers, then weights from
+  *that* fit's residuals and one weighted refit;
+- ``"weighted_iterated"`` — the same step iterated to a fixed point (an IRLS with the loss's
+  weight function on the fixed inlier set).
+
+Common random numbers: pass the same ``samples`` (from :func:`draw_samples`) to several calls
+and every method scores exactly the same hypotheses.
+
 The engine is generic: a model is given as two batched callables,
 ``fit_batch(x_samples (U, m, …), y_samples (U, m)) -> (params (U, p), valid (U,))`` and
 ``residuals_batch(params (U, p), x, y) -> (U, n)``, plus a ``refit(x, y, weights) -> params``.
@@ -30,11 +43,14 @@ from eotrack.validation import (
 )
 
 from .losses import LOSSES, get_loss
-from .models import LinearModel, _check_model, fit_linear
+from .models import LinearModel, _check_model, _wls, fit_linear
 
-__all__ = ["RansacResult", "draw_samples", "ransac", "ransac_linear", "wransac_linear"]
+__all__ = ["REFITS", "WEIGHTED_REFITS", "RansacResult", "draw_samples", "ransac", "ransac_linear",
+           "wransac_linear"]
 
-REFITS = ("lsq", "weighted", "none")
+REFITS = ("lsq", "weighted", "weighted_refit", "weighted_iterated", "none")
+#: Readings of "weights from the purified inlier set" (``weighting`` values of the WRANSAC refit).
+WEIGHTED_REFITS = ("weighted", "weighted_refit", "weighted_iterated")
 
 
 @dataclass(frozen=True)
@@ -61,6 +77,11 @@ class RansacResult:
         Hypotheses drawn and those that gave a well-posed fit.
     refitted
         Whether the refit ran (it needs at least ``m`` inliers with non-zero weight).
+    hypothesis_params
+        Parameters of the best minimal-sample hypothesis (before the refit).
+    refit_iterations
+        Weighted refits performed (0 for ``"lsq"``/``"none"``, 1 for ``"weighted"``, ≥ 1 for
+        the refit readings).
     """
 
     params: np.ndarray
@@ -73,6 +94,8 @@ class RansacResult:
     n_hypotheses: int
     n_valid: int
     refitted: bool
+    hypothesis_params: np.ndarray | None = None
+    refit_iterations: int = 0
 
     @property
     def n_inliers(self) -> int:
@@ -103,7 +126,8 @@ def ransac(x: np.ndarray, y: np.ndarray, *, sample_size: int,
            residuals_batch: Callable[[np.ndarray, np.ndarray, np.ndarray], np.ndarray],
            refit: Callable[[np.ndarray, np.ndarray, np.ndarray], np.ndarray] | None,
            threshold: float, n_hypotheses: int, rng: np.random.Generator,
-           loss: str = "zero_one", weighting: str = "lsq") -> RansacResult:
+           loss: str = "zero_one", weighting: str = "lsq", samples: np.ndarray | None = None,
+           max_refit_iterations: int = 100, refit_tol: float = 1e-9) -> RansacResult:
     """Generic vectorised RANSAC.
 
     Parameters
@@ -128,7 +152,15 @@ def ransac(x: np.ndarray, y: np.ndarray, *, sample_size: int,
     loss
         Scoring loss, a key of :data:`eotrack.robust.LOSSES`.
     weighting
-        ``"lsq"`` (inliers weight 1), ``"weighted"`` (``w = 1 − L(e)``), or ``"none"`` (no refit).
+        ``"lsq"`` (inliers weight 1), ``"weighted"`` (``w = 1 − L(e)`` from the hypothesis's
+        residuals), ``"weighted_refit"`` (``w`` from the residuals of the least-squares refit on
+        the inliers, one weighted step), ``"weighted_iterated"`` (that step repeated until the
+        parameters change by less than ``refit_tol`` relative), or ``"none"`` (no refit).
+    samples
+        Minimal samples to use, integer ``(U, m)`` (common random numbers across methods);
+        ``None`` draws them with ``rng``. When given, ``n_hypotheses`` must equal ``U``.
+    max_refit_iterations, refit_tol
+        Iteration cap and relative tolerance of ``"weighted_iterated"``.
 
     Returns
     -------
@@ -145,8 +177,20 @@ def ransac(x: np.ndarray, y: np.ndarray, *, sample_size: int,
     u = check_int(n_hypotheses, "n_hypotheses", min_value=1)
     loss_fn = get_loss(loss)
     check_choice(weighting, "weighting", REFITS)
+    n_iter_max = check_int(max_refit_iterations, "max_refit_iterations", min_value=1)
+    tol = check_positive(refit_tol, "refit_tol")
 
-    idx = draw_samples(rng, len(yy), m, u)
+    if samples is None:
+        idx = draw_samples(rng, len(yy), m, u)
+    else:
+        idx = np.asarray(samples)
+        if idx.ndim != 2 or idx.shape[1] != m or not np.issubdtype(idx.dtype, np.integer):
+            raise ValueError(f"samples must be an integer array of shape (U, {m}), got "
+                             f"{idx.dtype} {idx.shape}")
+        if idx.shape[0] != u:
+            raise ValueError(f"samples has {idx.shape[0]} rows but n_hypotheses={u}")
+        if idx.min() < 0 or idx.max() >= len(yy):
+            raise ValueError(f"samples must index 0..{len(yy) - 1}")
     params, valid = fit_batch(xx[idx], yy[idx])
     res = residuals_batch(params, xx, yy)
     res = np.where(valid[:, None], res, np.inf)
@@ -169,13 +213,30 @@ def ransac(x: np.ndarray, y: np.ndarray, *, sample_size: int,
         w = best_inl.astype(float)
     theta = params[best]
     refitted = False
+    n_iter = 0
     if weighting != "none" and refit is not None and np.count_nonzero(w) >= m:
         theta = refit(xx, yy, w)
         refitted = True
+        n_iter = int(weighting == "weighted")
+        if weighting in ("weighted_refit", "weighted_iterated"):
+            n_max = 1 if weighting == "weighted_refit" else n_iter_max
+            for _ in range(n_max):
+                e = residuals_batch(np.asarray(theta)[None, :], xx, yy)[0]
+                w_new = np.where(best_inl, 1.0 - loss_fn(e, t), 0.0)
+                if np.count_nonzero(w_new) < m:
+                    break
+                w = w_new
+                new = refit(xx, yy, w)
+                n_iter += 1
+                step = np.max(np.abs(np.asarray(new) - theta))
+                theta = new
+                if step <= tol * (1.0 + np.max(np.abs(theta))):
+                    break
     return RansacResult(params=np.asarray(theta), inliers=best_inl, weights=w,
                         cost=float(cost[best]), residuals=best_res, losses=best_loss,
                         sample=idx[best], n_hypotheses=u, n_valid=int(valid.sum()),
-                        refitted=refitted)
+                        refitted=refitted, hypothesis_params=np.asarray(params[best]),
+                        refit_iterations=n_iter)
 
 
 def _linear_callables(model: LinearModel):
@@ -192,15 +253,23 @@ def _linear_callables(model: LinearModel):
     def residuals_batch(theta: np.ndarray, x: np.ndarray, y: np.ndarray) -> np.ndarray:
         return y[None, :] - theta @ model.design(x).T
 
+    cache: dict[str, np.ndarray] = {}
+
     def refit(x: np.ndarray, y: np.ndarray, w: np.ndarray) -> np.ndarray:
-        return fit_linear(model, x, y, weights=w)
+        # the refits of one call share x: build its design matrix once
+        if "x" not in cache or cache["x"] is not x:
+            cache["x"], cache["a"] = x, model.design(x)
+        if np.count_nonzero(w) < model.n_params:
+            return fit_linear(model, x, y, weights=w)  # raises the documented error
+        return _wls(cache["a"], y, w)
 
     return fit_batch, residuals_batch, refit
 
 
 def ransac_linear(model: LinearModel, x: np.ndarray, y: np.ndarray, *, threshold: float,
                   n_hypotheses: int, rng: np.random.Generator, loss: str = "zero_one",
-                  weighting: str = "lsq") -> RansacResult:
+                  weighting: str = "lsq", samples: np.ndarray | None = None,
+                  max_refit_iterations: int = 100) -> RansacResult:
     """RANSAC for a linear-in-parameters model (minimal samples solved exactly, batched).
 
     Classic RANSAC is ``loss="zero_one", weighting="lsq"``; see :func:`wransac_linear` for the
@@ -212,11 +281,18 @@ def ransac_linear(model: LinearModel, x: np.ndarray, y: np.ndarray, *, threshold
     fit_batch, residuals_batch, refit = _linear_callables(model)
     return ransac(x, y, sample_size=model.n_params, fit_batch=fit_batch,
                   residuals_batch=residuals_batch, refit=refit, threshold=threshold,
-                  n_hypotheses=n_hypotheses, rng=rng, loss=loss, weighting=weighting)
+                  n_hypotheses=n_hypotheses, rng=rng, loss=loss, weighting=weighting,
+                  samples=samples, max_refit_iterations=max_refit_iterations)
 
 
 def wransac_linear(model: LinearModel, x: np.ndarray, y: np.ndarray, *, threshold: float,
-                   n_hypotheses: int, rng: np.random.Generator) -> RansacResult:
-    """WRANSAC (Yan et al. 2019): sinusoidal-loss scoring and a refit weighted by ``1 − L_s(e)``."""
+                   n_hypotheses: int, rng: np.random.Generator, weighting: str = "weighted",
+                   samples: np.ndarray | None = None) -> RansacResult:
+    """WRANSAC (Yan et al. 2019): sinusoidal-loss scoring and a refit weighted by ``1 − L_s(e)``.
+
+    ``weighting`` picks the reading of where the weights come from (one of
+    :data:`WEIGHTED_REFITS`; default: the best hypothesis's residuals).
+    """
+    check_choice(weighting, "weighting", WEIGHTED_REFITS)
     return ransac_linear(model, x, y, threshold=threshold, n_hypotheses=n_hypotheses, rng=rng,
-                         loss="sinusoidal", weighting="weighted")
+                         loss="sinusoidal", weighting=weighting, samples=samples)
