@@ -1,0 +1,108 @@
+"""Exercises of notebook 06 (RANSAC + CRLB feature selection for spacecraft pose).
+
+Expected values are computed with the library when first checked; nothing is typed in except
+the letters of the multiple-choice answers (definitions).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from eotrack.exercises import ArrayAnswer, Choice, FunctionAnswer, NumericAnswer, register
+
+SLUG = "ransac_crlb_pose"
+
+#: Exercise 1's point and camera: target point X (m), pose R = I, t (m), f (mm), σ (mm).
+EX1 = {"X": (0.5, -0.2, 0.0), "t": (0.0, 0.0, 10.0), "f_mm": 10.0, "sigma_mm": 0.2}
+
+
+def _ex1_expected() -> np.ndarray:
+    from eotrack.pose import intrinsic_matrix, pose_fisher_information
+
+    return pose_fisher_information(np.array([EX1["X"]]), np.eye(3), np.array(EX1["t"]),
+                                   intrinsic_matrix(EX1["f_mm"]), EX1["sigma_mm"])
+
+
+def _ex2_expected() -> float:
+    from eotrack.experiments.ransac_crlb_pose import Scenario, make_scene
+    from eotrack.pose import pose_crlb
+
+    sc = Scenario()
+    s = make_scene(np.random.default_rng(0), sc, outlier_fraction=0.0)
+    c6 = np.trace(pose_crlb(s.points[:6], sc.R, sc.t, sc.K, s.sigma[:6]))
+    return float(c6 / np.trace(pose_crlb(s.points, sc.R, sc.t, sc.K, s.sigma)))
+
+
+def points_needed(points, R, t, K, sigma, frac):
+    """Reference for exercise 3: the fewest leading points whose exact CRLB score is within
+    ``(1 + frac)`` of the score of all points (points taken in the given order)."""
+    from eotrack.pose import information_monotonicity
+
+    s = information_monotonicity(points, R, t, K, sigma)
+    return int(6 + np.flatnonzero(s <= (1.0 + frac) * s[-1])[0])
+
+
+def _ex3_inputs() -> list[tuple]:
+    from eotrack.experiments.ransac_crlb_pose import Scenario, make_scene
+
+    sc = Scenario()
+    out = []
+    for seed, frac in ((11, 0.1), (12, 0.25), (13, 0.5), (14, 0.05)):
+        s = make_scene(np.random.default_rng(seed), sc, outlier_fraction=0.0)
+        out.append((s.points, sc.R, sc.t, sc.K, s.sigma, frac))
+    return out
+
+
+def _ex4_expected() -> float:
+    from eotrack.experiments.ransac_crlb_pose import explore_runs, explore_selection
+
+    att, _ = explore_selection(0.01, "pooled", 0.01)
+    base = np.array([r["att_ransac"] for r in explore_runs(0.01)])
+    return float(att.mean() / base.mean())
+
+
+register(f"{SLUG}.1", ArrayAnswer(
+    "Derive the Fisher information J₁ = G₁ᵀG₁/σ² of ONE point for (δt, δθ) and evaluate it "
+    f"(6×6) for the target point X = {EX1['X']} m, R = I, t = {EX1['t']} m, f = "
+    f"{EX1['f_mm']} mm, σ = {EX1['sigma_mm']} mm.",
+    expected=_ex1_expected, rtol=1e-6, atol=1e-9,
+    hint="∂u/∂x_c = (K[:2] − u e₃ᵀ)/z_c; ∂x_c/∂δt = I and ∂x_c/∂δθ = −[R X]ₓ; "
+         "J₁ has rank 2 (one point gives two measurements)."))
+
+register(f"{SLUG}.2", NumericAnswer(
+    "For make_scene(np.random.default_rng(0), outlier_fraction=0.0) on the paper's Scenario(), "
+    "compute tr CRLB(first 6 points) / tr CRLB(all points) (6×6 minimal-form CRLB, true σ_i, "
+    "true pose).",
+    expected=_ex2_expected, rtol=1e-4,
+    hint="pose_crlb(points, R, t, K, sigma) gives the 6×6 bound; the ratio is ≥ 1 because "
+         "information only adds up."))
+
+register(f"{SLUG}.3", FunctionAnswer(
+    "Write points_needed(points, R, t, K, sigma, frac) → int: the fewest leading points (taken "
+    "in the given order, at least 6) whose exact weighted CRLB score is within (1 + frac) of "
+    "the score of all the points — a stopping rule that CAN drop points.",
+    reference=points_needed, inputs=_ex3_inputs, rtol=0.0, atol=0.0,
+    hint="information_monotonicity gives the score of every leading set S_6 ⊂ S_7 ⊂ … ⊂ S_n; "
+         "it is non-increasing, so the first index under the target is the answer."))
+
+register(f"{SLUG}.4", NumericAnswer(
+    "In the Explore panel choose the noise unit 0.01 mm (pixel reading) and the 'pooled' "
+    "reading: what mean attitude-error ratio (CRLB selection / RANSAC only) does the title "
+    "show?",
+    expected=_ex4_expected, rtol=0.01,
+    hint="read the number in the left plot's title (two decimals are enough)."))
+
+register(f"{SLUG}.5", Choice(
+    "Critique. Why can the §2.4 rule, as printed, never drop a point? (a) RANSAC already "
+    "removed every noisy point; (b) Fisher information is additive and each point's "
+    "contribution is positive semi-definite, so the CRLB can only fall when a point is added; "
+    "(c) the weights of the 7 CRLB values are unknown; (d) 6 points are too few for a pose.",
+    options=["a", "b", "c", "d"], answer="b",
+    hint="write J(S ∪ {i}) in terms of J(S) and look at the sign of what is added."))
+
+register(f"{SLUG}.6", Choice(
+    "Critique. Which reading of the rule did we pre-register as primary, from the paper's own "
+    "noise model (eq. 5)? (a) 'as printed'; (b) 'sandwich' with the simulator's σ_i; "
+    "(c) 'pooled' — one σ² estimated from the set's residuals; (d) 'tolerance'.",
+    options=["a", "b", "c", "d"], answer="c",
+    hint="eq. (5) has one σ² for all points, and a real system does not know it."))

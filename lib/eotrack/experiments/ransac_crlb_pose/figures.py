@@ -1,0 +1,231 @@
+"""Figures of the RANSAC + CRLB notebook: each function takes ``ax=None`` and returns it."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import matplotlib.pyplot as plt
+import numpy as np
+import pandas as pd
+
+from eotrack.plotting import get_ax
+from eotrack.validation import check_choice
+
+__all__ = [
+    "draw_scene_3d",
+    "figure_errors",
+    "plot_budget",
+    "plot_crlb_ellipsoid",
+    "plot_efficiency",
+    "plot_error_distribution",
+    "plot_error_ecdf",
+    "plot_monotonicity",
+    "plot_selected_fraction",
+]
+
+_QTY = {"pos": ("position error |t̂ − t| (m)", "Fig. 4", "position"),
+        "att": ("attitude error, angle of R̂Rᵀ (deg)", "Fig. 5", "attitude")}
+
+
+def _label(m: str) -> str:
+    return {"ransac": "RANSAC\nonly", "ml": "ML\n(weighted,\nreference)"}.get(
+        m, "+ CRLB\n" + m.replace(" (", "\n("))
+
+
+def plot_error_distribution(df: pd.DataFrame, quantity: str = "att",
+                            methods: tuple[str, ...] = ("ransac", "pooled"), ax=None,
+                            paper_note: str = "the paper's curves were images (lost): "
+                                              "no paper values"):
+    """Figs. 4/5 as distributions: a box per method, each run a faint line across the boxes.
+
+    The faint lines join the same run's errors, so a reader sees both the spread over runs and
+    the paired change that the Wilcoxon test uses.
+    """
+    check_choice(quantity, "quantity", list(_QTY))
+    ax = get_ax(ax, figsize=(7, 4))
+    ok = df[df["success"]]
+    data = [ok[f"{quantity}_{m}"].to_numpy() for m in methods]
+    x = np.arange(1, len(methods) + 1)
+    Y = np.column_stack(data)
+    ax.plot(x, Y.T, color="0.5", lw=0.3, alpha=0.25, zorder=1)
+    ax.boxplot(data, positions=x, widths=0.45, showmeans=True, zorder=3,
+               meanprops={"marker": "D", "markerfacecolor": "w", "markeredgecolor": "k"},
+               flierprops={"markersize": 2})
+    ax.set_xticks(x, [_label(m) for m in methods])
+    ax.set_yscale("log")
+    ylab, fig_no, word = _QTY[quantity]
+    ax.set_ylabel(ylab)
+    ax.set_title(f"{fig_no} — {word} error over {len(ok)} runs (◇ mean; {paper_note})",
+                 fontsize=9)
+    return ax
+
+
+def plot_error_ecdf(df: pd.DataFrame, quantity: str = "att",
+                    methods: tuple[str, ...] = ("ransac", "pooled"), ax=None):
+    """Empirical CDF of the per-run error for each method (log x)."""
+    check_choice(quantity, "quantity", list(_QTY))
+    ax = get_ax(ax, figsize=(6, 4))
+    ok = df[df["success"]]
+    for m in methods:
+        v = np.sort(ok[f"{quantity}_{m}"].to_numpy())
+        ax.step(v, np.arange(1, len(v) + 1) / len(v), where="post",
+                label=_label(m).replace("\n", " "))
+    ax.set_xscale("log")
+    ax.set_xlabel(_QTY[quantity][0])
+    ax.set_ylabel("fraction of runs ≤ x")
+    ax.set_title("ECDF (left/up = more accurate)", fontsize=9)
+    ax.legend(fontsize=7, loc="lower right")
+    return ax
+
+
+def figure_errors(df: pd.DataFrame, quantity: str = "att",
+                  methods: tuple[str, ...] = ("ransac", "pooled")):
+    """Box plot with per-run lines (left) and ECDF (right) for Fig. 4 or Fig. 5."""
+    fig, (a1, a2) = plt.subplots(1, 2, figsize=(11, 4.2), width_ratios=[1.2, 1])
+    plot_error_distribution(df, quantity, methods, ax=a1)
+    plot_error_ecdf(df, quantity, methods, ax=a2)
+    fig.tight_layout()
+    return fig
+
+
+def plot_selected_fraction(df: pd.DataFrame, readings: tuple[str, ...] = ("pooled",),
+                           paper_fraction: float = 2 / 3,
+                           fraction_range: tuple[float, float] = (0.55, 0.8), ax=None):
+    """Fig. 6 as a distribution: selected / inliers per run for each reading, paper's value."""
+    ax = get_ax(ax, figsize=(7, 4))
+    ok = df[df["success"]]
+    data = [(ok[f"n_{r}"] / ok["n_inliers"]).to_numpy() for r in readings]
+    x = np.arange(1, len(readings) + 1)
+    ax.axhspan(*fraction_range, color="C2", alpha=0.12, label="our tolerance (claims.toml)")
+    ax.axhline(paper_fraction, color="k", ls="--", lw=1,
+               label=f"paper: ≈ {paper_fraction:.2f} of the inliers")
+    ax.violinplot(data, positions=x, widths=0.7, showmedians=True)
+    jit = np.random.default_rng(0).uniform(-0.12, 0.12, len(ok))
+    for xi, d in zip(x, data):
+        ax.plot(xi + jit, d, ".", ms=3, color="0.3", alpha=0.5)
+    ax.set_xticks(x, [r.replace(" (", "\n(") for r in readings])
+    ax.set_ylabel("selected points / RANSAC inliers")
+    ax.set_ylim(0, 1.05)
+    ax.set_title(f"Fig. 6 — share of inliers kept, {len(ok)} runs (one dot per run)",
+                 fontsize=9)
+    ax.legend(fontsize=7, loc="lower left")
+    return ax
+
+
+def plot_monotonicity(sizes: np.ndarray, scores: np.ndarray, sandwich: np.ndarray | None = None,
+                      ax=None):
+    """Weighted CRLB sum (and optionally the sandwich score) versus the number of points."""
+    ax = get_ax(ax)
+    for k, s in enumerate(scores):
+        line = ax.semilogy(sizes, s, lw=1, label="exact CRLB" if k == 0 else None)[0]
+        if sandwich is not None:
+            ax.semilogy(sizes, sandwich[k], lw=0.8, ls=":", color=line.get_color(),
+                        label="unweighted-LS covariance ('sandwich')" if k == 0 else None)
+    ax.set_xlabel("number of points in the set (random order)")
+    ax.set_ylabel("weighted sum of the 7 variances")
+    ax.set_title("Exact CRLB never rises when a point is added")
+    ax.legend()
+    return ax
+
+
+def _frame(ax, origin, R, length, label, color):
+    for k, c in enumerate(("r", "g", "b")):
+        d = R[:, k] * length
+        ax.quiver(*origin, *d, color=c, lw=1.5, arrow_length_ratio=0.15)
+        ax.text(*(origin + 1.1 * d), f"{label}{'xyz'[k]}", color=c, fontsize=7)
+    ax.text(*origin, f"  {label}", color=color, fontsize=8)
+
+
+def draw_scene_3d(scene: Any, ax=None, *, frustum_depth: float = 2.0):
+    """3-D schematic: camera frame and field of view, target frame, feature points (§1, §3).
+
+    The camera sits at the origin with ``z`` along the optical axis; the target frame is at
+    ``t`` with axes ``R e_k``; feature points (gross errors in red) are ``R X + t``.
+    """
+    if ax is None:
+        fig = plt.figure(figsize=(6.5, 5.5))
+        ax = fig.add_subplot(projection="3d")
+    P = scene.points @ scene.R.T + scene.t
+    ax.scatter(*P[~scene.gross].T, s=4, c="C0", label="feature points (matched)")
+    ax.scatter(*P[scene.gross].T, s=8, c="C3", marker="x", label="gross errors")
+    _frame(ax, np.zeros(3), np.eye(3), 1.5, "c", "k")
+    _frame(ax, scene.t, scene.R, 1.0, "t", "k")
+    ax.plot(*np.column_stack([np.zeros(3), scene.t]), "k:", lw=0.8)
+    # field of view through the extreme image points
+    half = np.abs(P[:, :2] / P[:, 2:]).max(axis=0) * 1.1
+    corners = np.array([[sx * half[0], sy * half[1], 1.0] for sx, sy in
+                        ((1, 1), (-1, 1), (-1, -1), (1, -1), (1, 1))]) * P[:, 2].max()
+    for c in corners[:4]:
+        ax.plot(*np.column_stack([np.zeros(3), c]), color="0.6", lw=0.6)
+    ax.plot(*corners.T, color="0.6", lw=0.6)
+    ax.set_xlabel("x_c (m)")
+    ax.set_ylabel("y_c (m)")
+    ax.set_zlabel("z_c (m, optical axis)")
+    ax.set_box_aspect((1, 1, 2.5))
+    ax.view_init(elev=20, azim=-60)
+    ax.legend(fontsize=7, loc="upper left")
+    ax.set_title("Camera frame c, target frame t, feature plane (§1, §3)", fontsize=9)
+    return ax
+
+
+def plot_crlb_ellipsoid(C: np.ndarray, samples: np.ndarray | None = None, *,
+                        block: str = "att", ax=None, n_sigma: float = 1.0):
+    """1-σ ellipsoid of the position (m) or attitude (deg) block of a 6×6 CRLB, with samples.
+
+    ``samples`` (m, 6) are Monte Carlo estimator errors ``(δt, δθ)`` drawn as dots; for an
+    efficient estimator about 20 % fall inside the 1-σ ellipsoid (χ²₃ ≤ 1).
+    """
+    check_choice(block, "block", ["pos", "att"])
+    C = np.asarray(C, float)
+    if C.shape != (6, 6):
+        raise ValueError(f"C must be 6×6, got {C.shape}")
+    sl = slice(0, 3) if block == "pos" else slice(3, 6)
+    scale = 1.0 if block == "pos" else np.degrees(1.0)
+    S = C[sl, sl] * scale ** 2
+    if ax is None:
+        fig = plt.figure(figsize=(5.5, 5))
+        ax = fig.add_subplot(projection="3d")
+    w, V = np.linalg.eigh(S)
+    uu, vv = np.meshgrid(np.linspace(0, 2 * np.pi, 30), np.linspace(0, np.pi, 16))
+    sph = np.stack([np.cos(uu) * np.sin(vv), np.sin(uu) * np.sin(vv), np.cos(vv)], -1)
+    E = n_sigma * sph @ (V * np.sqrt(w)).T
+    ax.plot_wireframe(E[..., 0], E[..., 1], E[..., 2], color="C1", lw=0.5, alpha=0.7)
+    if samples is not None:
+        s = np.asarray(samples, float)[:, sl] * scale
+        ax.scatter(*s.T, s=4, c="C0", alpha=0.6, label=f"ML estimates ({len(s)} draws)")
+        ax.legend(fontsize=7)
+    unit = "m" if block == "pos" else "deg"
+    names = ("δt_x", "δt_y", "δt_z") if block == "pos" else ("δθ_x", "δθ_y", "δθ_z")
+    for setter, nm in zip((ax.set_xlabel, ax.set_ylabel, ax.set_zlabel), names):
+        setter(f"{nm} ({unit})")
+    ax.set_title(f"{n_sigma:g}-σ CRLB ellipsoid, {'position' if block == 'pos' else 'attitude'}",
+                 fontsize=9)
+    return ax
+
+
+def plot_efficiency(df: pd.DataFrame, ax=None):
+    """RMS error / CRLB for each estimator versus the noise unit."""
+    ax = get_ax(ax)
+    for j, (name, g) in enumerate(df.groupby("estimator", sort=False)):
+        x = g["noise unit (mm)"].to_numpy() * 1.08 ** (j - 1)  # small offsets: no overlap
+        line = ax.loglog(x, g["att RMS / CRLB"], "o-", label=f"{name}: attitude")[0]
+        ax.loglog(x, g["pos RMS / CRLB"], "s--", color=line.get_color(),
+                  label=f"{name}: position")
+    ax.axhline(1.0, color="k", lw=0.8)
+    ax.set_xlabel("noise unit (mm): 1 = variances in mm² as printed, 0.01 = px² (10 µm pixel)")
+    ax.set_ylabel("RMS error / √CRLB")
+    ax.legend(fontsize=7)
+    ax.set_title("Estimator efficiency")
+    return ax
+
+
+def plot_budget(df: pd.DataFrame, ax=None):
+    """Median attitude error versus k for greedy D/A-optimal and random subsets."""
+    ax = get_ax(ax)
+    for method, g in df.groupby("method"):
+        ax.loglog(g["k"], g["att_median_deg"], "o-", label=method)
+    ax.set_xlabel("number of points k")
+    ax.set_ylabel("median attitude error (deg)")
+    ax.set_title("Budgeted selection: best k points vs random k (pixel reading)")
+    ax.legend()
+    return ax

@@ -1,0 +1,1 @@
+"""Exercise-checker tests (a package, so their basenames may repeat tests/papers/)."""
