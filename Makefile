@@ -4,7 +4,7 @@ PY      := .venv/bin/python
 STAMP   := .venv/.installed-stamp
 NB_SAN  := tests/notebooks/sanitize.cfg
 
-.PHONY: setup repro repro-quick test lint unit papers notebooks browser lab bench execute clean
+.PHONY: setup repro repro-quick test lint unit papers notebooks browser lab bench execute clean book
 
 # The stamp holds a hash of what the install depends on (environment.txt and pyproject.toml less
 # its [tool.*] sections): a newer file with the same content (a checkout, a ruff setting) does
@@ -60,6 +60,10 @@ lab: setup
 	exec .venv/bin/jupyter lab --ServerApp.root_dir="$(CURDIR)" \
 		--LabApp.default_url=/lab/tree/$(LAB_OPEN) \
 		$$( [ "$$(id -u)" = 0 ] && echo --allow-root ) $(LAB_ARGS)
+
+## the static HTML book of the stored notebooks (no re-execution; warnings fail) -> build/book
+book: setup
+	$(PY) -m sphinx -b html -W --keep-going -q -c notebooks/_book . build/book
 
 ## side-by-side timings against the peer libraries
 bench: setup

