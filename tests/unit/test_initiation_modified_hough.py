@@ -84,10 +84,13 @@ def test_stationary_points_rejected_by_velocity_gate():
 
 def test_run_log_has_one_row_per_frame():
     frames, _ = planted_frames()
-    run = ModifiedHoughInitiator().run(frames, log=True)
+    run = ModifiedHoughInitiator(literal=True).run(frames, log=True)
     assert [e["frame"] for e in run.log] == [0, 1, 2, 3]
     assert [e["confirmed"] for e in run.log] == [0, 0, 1, 4]
     assert all(e["created"] >= 0 and e["destroyed"] >= 0 for e in run.log)
+    run = ModifiedHoughInitiator().run(frames, log=True)
+    assert [e["confirmed"] for e in run.log] == [0, 0, 1, 4]
+    assert all(e["candidate tracks"] >= e["confirmed"] for e in run.log)
 
 
 def test_cell_of_known_motion():
@@ -119,10 +122,10 @@ def test_result_independent_of_detection_order(seed):
     rng = np.random.default_rng(seed)
     clutter = [rng.uniform(0, 512, (6, 2)) for _ in range(4)]
     frames, _ = planted_frames(clutter=clutter)
-    ini = ModifiedHoughInitiator(neighbourhood=26)
-    ref = as_sets(ini.initiate(frames), frames)
     shuffled = [(t, xy[rng.permutation(len(xy))]) for t, xy in frames]
-    assert as_sets(ini.initiate(shuffled), shuffled) == ref
+    for ini in (ModifiedHoughInitiator(neighbourhood=26, literal=True), ModifiedHoughInitiator()):
+        ref = as_sets(ini.initiate(frames), frames)
+        assert as_sets(ini.initiate(shuffled), shuffled) == ref
 
 
 @pytest.mark.parametrize(("kw", "match"), [
@@ -135,6 +138,10 @@ def test_result_independent_of_detection_order(seed):
     ({"m": 1}, "m must be >= 2"),
     ({"neighbourhood": 8}, "neighbourhood"),
     ({"origin_px": (0.0, np.nan)}, "origin_px"),
+    ({"sigma_px": 0.0}, "sigma_px"),
+    ({"alpha": 1.0}, "alpha"),
+    ({"alpha": -0.1}, "alpha"),
+    ({"m": 3}, "m >= 4"),
 ])
 def test_bad_config(kw, match):
     with pytest.raises(ValueError, match=match):
@@ -151,10 +158,19 @@ def test_bad_frames(frames, exc, match):
         ModifiedHoughInitiator().initiate(frames)
 
 
+def test_literal_flag_must_be_bool():
+    with pytest.raises(TypeError, match="literal"):
+        ModifiedHoughInitiator(literal="yes")
+
+
+def test_literal_2_of_3_still_allowed():
+    assert ModifiedHoughInitiator(m=3, literal=True).m == 3
+
+
 def test_huge_parameter_space_refused():
     frames = [(0.0, [[1e7, 1e7]]), (1.0, [[1e7 + 20, 1e7]])]
     with pytest.raises(ValueError, match="max_cells"):
-        ModifiedHoughInitiator(max_cells=1000).initiate(frames)
+        ModifiedHoughInitiator(max_cells=1000, literal=True).initiate(frames)
 
 
 def test_votes_older_than_m_frames_do_not_count():
@@ -167,7 +183,81 @@ def test_votes_older_than_m_frames_do_not_count():
     frames[1] = (1.0, np.array([a1]))
     frames[33] = (33.0, np.array([a0]))
     frames[34] = (34.0, np.array([a1]))
+    assert ModifiedHoughInitiator(literal=True).initiate(frames) == []
     assert ModifiedHoughInitiator().initiate(frames) == []
     # the same two pairs within m frames do confirm (P counts frames 0, 1 and 2 via two pairs)
     frames3 = [(0.0, np.array([a0])), (1.0, np.array([a1])), (2.0, np.array([[160.0, 140.0]]))]
     assert len(ModifiedHoughInitiator().initiate(frames3)) == 1
+
+
+# ----------------------------------------------------------------------------- verified mode
+def test_chi2_disc_is_the_test():
+    """A middle point off the line by just less / more than the χ² radius is kept / refused."""
+    from scipy.stats import chi2
+
+    sigma, alpha = 0.3, 1e-3
+    thr = chi2.ppf(1 - alpha, 2)
+    c = 1.0 + 0.25 + 0.25  # var factor of the middle point of three evenly spaced ones
+    r = sigma * math.sqrt(thr * c)
+    a, b = np.array([100.0, 100.0]), np.array([160.0, 140.0])
+    for off, n_want in ((0.98 * r, 1), (1.02 * r, 0)):
+        mid = (a + b) / 2 + np.array([0.0, off])
+        frames = [(0.0, a[None]), (1.0, mid[None]), (2.0, b[None])]
+        tracks = ModifiedHoughInitiator(sigma_px=sigma, alpha=alpha).initiate(frames)
+        assert len(tracks) == n_want
+        if tracks:
+            assert tracks[0].info["chi2"] == pytest.approx((off**2 / c) / sigma**2, rel=1e-6)
+
+
+@given(st.integers(0, 2**32 - 1))
+@settings(max_examples=15, deadline=None)
+def test_verified_tracks_pass_the_rule(seed):
+    """Every confirmed track: ≥ 3 of its window frames, one detection per frame, χ² test and
+    velocity gate pass, and no detection is in two tracks."""
+    from scipy.stats import chi2
+
+    rng = np.random.default_rng(seed)
+    frames = [(float(k) + rng.uniform(0, 0.3), rng.uniform(0, 200, (rng.integers(0, 25), 2)))
+              for k in range(6)]
+    ini = ModifiedHoughInitiator(sigma_px=0.8)
+    tracks = ini.initiate(frames)
+    seen = set()
+    for tr in tracks:
+        conf = [(f, d) for f, d in tr.hits if f <= tr.confirmed_at]
+        fs = [f for f, _ in conf]
+        assert len(set(fs)) == len(fs) >= 3
+        assert max(fs) - min(fs) <= ini.m - 1
+        t = np.array([frames[f][0] for f in fs])
+        xy = np.array([frames[f][1][d] for f, d in conf])
+        coef = np.polyfit(t, xy, 1)
+        rss = np.sum((np.polyval(coef[:, 0], t) - xy[:, 0]) ** 2
+                     + (np.polyval(coef[:, 1], t) - xy[:, 1]) ** 2)
+        assert rss / ini.sigma_px**2 <= chi2.ppf(1 - ini.alpha, 2 * (len(fs) - 2)) + 1e-9
+        assert ini.v_min <= np.hypot(*coef[0]) <= ini.v_max
+        assert not (set(tr.hits) & seen)
+        seen |= set(tr.hits)
+
+
+def test_verified_prefers_the_better_fit_over_a_clutter_thief():
+    """Greedy in cell order let a false track take an object's detection; best-fit-first
+    does not: the clutter point makes a worse (still passing) triplet with two of the object's
+    detections and must lose to the object's four-hit track."""
+    obj = [np.array([100.0 + 40 * k, 200.0 + 10 * k]) for k in range(4)]
+    thief = obj[1] + np.array([0.0, 0.9])  # a clutter point close to the object in frame 1
+    frames = [(0.0, np.array([obj[0]])), (1.0, np.array([thief, obj[1]])),
+              (2.0, np.array([obj[2]])), (3.0, np.array([obj[3]]))]
+    tracks = ModifiedHoughInitiator(sigma_px=0.5).initiate(frames)
+    assert len(tracks) == 1
+    pos = tracks[0].positions([type("F", (), {"xy": np.asarray(xy)})() for _, xy in frames])
+    np.testing.assert_allclose(pos, np.array(obj))
+
+
+def test_verified_finds_noisy_objects_in_clutter():
+    rng = np.random.default_rng(3)
+    clutter = [rng.uniform(0, 512, (20, 2)) for _ in range(4)]
+    frames, truth = planted_frames(clutter=clutter)
+    frames = [(t, xy + rng.normal(0, 0.3, xy.shape)) for t, xy in frames]
+    tracks = ModifiedHoughInitiator(sigma_px=0.3).initiate(frames)
+    found = {next(iter(ids)) for tr in tracks
+             if len(ids := {int(truth[f][d]) for f, d in tr.hits}) == 1 and min(ids) >= 0}
+    assert found == {0, 1, 2, 3, 4}

@@ -155,7 +155,7 @@ def xu_initiator(cfg: XuConfig, neighbourhood: int = 6) -> ModifiedHoughInitiato
     return ModifiedHoughInitiator(d_rho=cfg.cell_rho_px, d_theta_deg=cfg.cell_theta_deg,
                                   d_v=cfg.cell_v_px_s, v_min=cfg.v_gate_px_s[0],
                                   v_max=cfg.v_gate_px_s[1], m=cfg.rule_m,
-                                  neighbourhood=neighbourhood)
+                                  neighbourhood=neighbourhood, literal=True)
 
 
 @dataclass

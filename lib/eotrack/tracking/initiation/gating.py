@@ -18,13 +18,13 @@
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass, field
 
 import numpy as np
 
 from eotrack.validation import as_finite_array, check_positive
 
 from .base import Frame, Track
+from .pairs import PointGrid, cv_fit_batch, greedy_disjoint
 
 __all__ = [
     "TrackHandOff",
@@ -140,15 +140,6 @@ def canonical_order(xy: np.ndarray) -> np.ndarray:
     return np.lexsort((xy[:, 1], xy[:, 0]))
 
 
-@dataclass
-class _Kept:
-    hits: list[tuple[int, int]]
-    confirmed_at: int
-    info: dict
-    t: list[float] = field(default_factory=list)
-    xy: list[np.ndarray] = field(default_factory=list)
-
-
 class TrackHandOff:
     """Confirmed tracks handed to tracking; they claim their detections in later frames.
 
@@ -156,7 +147,8 @@ class TrackHandOff:
     constant-velocity fit of its (last four) hits; detections within ``gate_px`` of a
     prediction are assigned greedily by increasing distance (ties broken by detection position),
     each detection to at most one track. Claimed detections are appended to the track and are
-    no longer candidates for initiation.
+    no longer candidates for initiation. All tracks are predicted and gated at once (arrays, a
+    spatial grid and :func:`~eotrack.tracking.initiation.pairs.greedy_disjoint`).
 
     Parameters
     ----------
@@ -164,22 +156,63 @@ class TrackHandOff:
         Radius of the maintenance gate (pixels, > 0).
     """
 
+    _KEEP = 4  # hits used for the prediction
+
     def __init__(self, gate_px: float) -> None:
         self.gate_px = check_positive(gate_px, "gate_px")
-        self._tracks: list[_Kept] = []
+        self._hits: list[list[tuple[int, int]]] = []
+        self._confirmed: list[int] = []
+        self._info: list[dict] = []
+        k = self._KEEP
+        self._t = np.zeros((0, k))
+        self._x = np.zeros((0, k))
+        self._y = np.zeros((0, k))
+        self._n = np.zeros(0, dtype=np.int64)
+        self._pending: list[tuple[np.ndarray, np.ndarray, np.ndarray, int]] = []
 
     def __len__(self) -> int:
-        return len(self._tracks)
+        return len(self._hits)
 
     def confirm(self, hits: Sequence[tuple[int, int]], confirmed_at: int,
                 frames: Sequence[Frame], info: dict | None = None) -> None:
         """Register a newly confirmed track (``hits`` in any order; stored in frame order)."""
         hits = sorted((int(f), int(d)) for f, d in hits)
-        kept = _Kept(hits=hits, confirmed_at=int(confirmed_at), info=dict(info or {}))
-        for f, d in hits:
-            kept.t.append(frames[f].time_s)
-            kept.xy.append(np.asarray(frames[f].xy[d], float))
-        self._tracks.append(kept)
+        self._hits.append(hits)
+        self._confirmed.append(int(confirmed_at))
+        self._info.append(dict(info or {}))
+        last = hits[-self._KEEP:]
+        t = np.array([frames[f].time_s for f, _ in last], float)
+        xy = np.array([frames[f].xy[d] for f, d in last], float).reshape(-1, 2)
+        self._pending.append((t, xy[:, 0], xy[:, 1], len(last)))
+
+    def _flush(self) -> None:
+        if not self._pending:
+            return
+        k = self._KEEP
+        m = len(self._pending)
+        t = np.zeros((m, k))
+        x = np.zeros((m, k))
+        y = np.zeros((m, k))
+        n = np.zeros(m, dtype=np.int64)
+        for i, (ti, xi, yi, ni) in enumerate(self._pending):
+            t[i, k - ni:] = ti
+            x[i, k - ni:] = xi
+            y[i, k - ni:] = yi
+            n[i] = ni
+        self._t = np.concatenate([self._t, t])
+        self._x = np.concatenate([self._x, x])
+        self._y = np.concatenate([self._y, y])
+        self._n = np.concatenate([self._n, n])
+        self._pending = []
+
+    def predict(self, time_s: float) -> np.ndarray:
+        """Predicted positions ``(n_tracks, 2)`` of all confirmed tracks at ``time_s``."""
+        self._flush()
+        if len(self._n) == 0:
+            return np.zeros((0, 2))
+        mask = np.arange(self._KEEP)[None, :] >= (self._KEEP - self._n)[:, None]
+        tm, pm, v, _ = cv_fit_batch(self._t, self._x, self._y, mask)
+        return pm + v * (float(time_s) - tm)[:, None]
 
     def claim(self, frame_index: int, time_s: float, xy: np.ndarray,
               available: np.ndarray) -> np.ndarray:
@@ -200,38 +233,40 @@ class TrackHandOff:
             Boolean mask of the detections claimed in this call.
         """
         claimed = np.zeros(len(xy), dtype=bool)
-        if not self._tracks or len(xy) == 0:
+        if not self._hits or len(xy) == 0:
             return claimed
-        pred = np.empty((len(self._tracks), 2))
-        for i, tr in enumerate(self._tracks):
-            t = np.asarray(tr.t[-4:])
-            p = np.asarray(tr.xy[-4:])
-            pm, v = fit_constant_velocity(t, p)
-            pred[i] = pm + v * (time_s - t.mean())
-        d = np.hypot(pred[:, None, 0] - xy[None, :, 0], pred[:, None, 1] - xy[None, :, 1])
-        d[:, ~available] = np.inf
-        ti, di = np.nonzero(d <= self.gate_px)
+        pred = self.predict(time_s)
+        free = np.flatnonzero(available)
+        if len(free) == 0:
+            return claimed
+        grid = PointGrid(xy[free], self.gate_px)
+        ti, j, d2 = grid.query(pred)
         if len(ti) == 0:
             return claimed
-        order = np.lexsort((xy[di, 1], xy[di, 0], d[ti, di]))
-        used_t = np.zeros(len(self._tracks), dtype=bool)
-        for k in order:
-            a, b = ti[k], di[k]
-            if used_t[a] or claimed[b]:
-                continue
-            used_t[a] = True
-            claimed[b] = True
-            tr = self._tracks[a]
-            tr.hits.append((int(frame_index), int(b)))
-            tr.t.append(float(time_s))
-            tr.xy.append(np.asarray(xy[b], float))
+        di = free[j]
+        d = np.sqrt(d2)
+        order = np.lexsort((xy[di, 1], xy[di, 0], d))
+        rank = np.empty(len(order), dtype=np.int64)
+        rank[order] = np.arange(len(order))
+        n_t = len(pred)
+        win = greedy_disjoint(np.stack([ti, n_t + di], 1), rank, n_t + len(xy))
+        a, b = ti[win], di[win]
+        claimed[b] = True
+        for ta, db in zip(a.tolist(), b.tolist()):
+            self._hits[ta].append((int(frame_index), db))
+        # shift the new hit into the prediction window of the claiming tracks
+        for arr, val in ((self._t, np.full(len(a), float(time_s))), (self._x, xy[b, 0]),
+                         (self._y, xy[b, 1])):
+            arr[a, :-1] = arr[a, 1:]
+            arr[a, -1] = val
+        self._n[a] = np.minimum(self._n[a] + 1, self._KEEP)
         available &= ~claimed
         return claimed
 
     def tracks(self, perms: Sequence[np.ndarray] | None = None) -> list[Track]:
         """The confirmed tracks; ``perms[f]`` maps working indices back to input indices."""
         out = []
-        for tr in self._tracks:
-            hits = [(f, int(perms[f][d]) if perms is not None else d) for f, d in tr.hits]
-            out.append(Track(hits=hits, confirmed_at=tr.confirmed_at, info=dict(tr.info)))
+        for hits, conf, info in zip(self._hits, self._confirmed, self._info):
+            h = [(f, int(perms[f][d]) if perms is not None else d) for f, d in hits]
+            out.append(Track(hits=h, confirmed_at=conf, info=dict(info)))
         return out

@@ -36,6 +36,7 @@ from eotrack.validation import check_int, check_positive
 
 from .base import Frame, Track, validate_frames
 from .gating import TrackHandOff, canonical_order, check_velocity_gate
+from .pairs import PointGrid, greedy_disjoint
 
 __all__ = ["AngleConstrainedLogicInitiator", "LogicInitiator", "logic_false_track_rate"]
 
@@ -165,25 +166,26 @@ class _LogicRun:
                 vel = (p_last - p_prev) / (t_last - t_prev)[:, None]
                 dt = (tk - t_last)[:, None]
                 pred = p_last + vel * dt
-                d = np.hypot(pred[:, None, 0] - pk[None, :, 0], pred[:, None, 1] - pk[None, :, 1])
-                ok = d <= cfg.gate_px
-                seg = np.hypot(pk[None, :, 0] - p_last[:, None, 0],
-                               pk[None, :, 1] - p_last[:, None, 1]) / dt
-                ok &= (seg >= cfg.v_min) & (seg <= cfg.v_max)
+                # every detection inside a prediction gate (spatial grid, no tracks × detections
+                # matrix), then the segment's velocity gate and the angle test on those pairs
+                ti, dj, d2 = PointGrid(pk, cfg.gate_px).query(pred)
+                seg = np.hypot(pk[dj, 0] - p_last[ti, 0], pk[dj, 1] - p_last[ti, 1]) / dt[ti, 0]
+                ok = (seg >= cfg.v_min) & (seg <= cfg.v_max)
                 if cfg.min_angle_deg is not None:
-                    a = p_prev[:, None, :] - p_last[:, None, :]
-                    b = pk[None, :, :] - p_last[:, None, :]
-                    na = np.hypot(a[..., 0], a[..., 1])
-                    nb = np.hypot(b[..., 0], b[..., 1])
-                    cosang = (a[..., 0] * b[..., 0] + a[..., 1] * b[..., 1]) / np.maximum(
-                        na * nb, 1e-300)
+                    a = p_prev[ti] - p_last[ti]
+                    b = pk[dj] - p_last[ti]
+                    na = np.hypot(a[:, 0], a[:, 1])
+                    nb = np.hypot(b[:, 0], b[:, 1])
+                    cosang = (a[:, 0] * b[:, 0] + a[:, 1] * b[:, 1]) / np.maximum(na * nb, 1e-300)
                     ok &= cosang < np.cos(np.radians(cfg.min_angle_deg))
-                d = np.where(ok, d, np.inf)
-                j = np.argmin(d, axis=1)  # ties: lowest canonical index (x, then y)
-                got = np.isfinite(d[np.arange(len(ext)), j])
-                rows = ext[got]
-                self.hits[rows, slot_k[rows]] = ids_k[j[got]]
-                self.cost[rows] += d[got, j[got]]
+                ti, dj, d = ti[ok], dj[ok], np.sqrt(d2[ok])
+                # nearest per track (ties: lowest canonical index, i.e. x then y)
+                o = np.lexsort((dj, d, ti))
+                ti, dj, d = ti[o], dj[o], d[o]
+                first = np.r_[True, ti[1:] != ti[:-1]] if len(ti) else np.zeros(0, bool)
+                rows = ext[ti[first]]
+                self.hits[rows, slot_k[rows]] = ids_k[dj[first]]
+                self.cost[rows] += d[first]
             # --- heads: pair with every detection in the velocity gate
             heads = np.flatnonzero(count == 1)
             if len(heads):
@@ -230,11 +232,15 @@ class _LogicRun:
         first = np.max(np.where(self.hits[ready] >= 0, self.hits[ready], -1), axis=1)
         order = ready[np.lexsort((self.xy_flat[first, 1], self.xy_flat[first, 0],
                                   self.cost[ready], -count[ready]))]
+        # best first, each detection in one track (vectorised greedy); rows holding a
+        # detection already claimed cannot be confirmed
+        h = self.hits[order]
+        free = np.all((h < 0) | self.avail[np.maximum(h, 0)], axis=1)
+        order, h = order[free], h[free]
+        win = greedy_disjoint(h, np.arange(len(order)), len(self.avail))
         done = np.zeros(len(self.start), dtype=bool)
-        for r in order:
+        for r in order[win]:
             g = self.hits[r][self.hits[r] >= 0]
-            if not np.all(self.avail[g]):
-                continue
             self.avail[g] = False
             fr = np.searchsorted(self.off, g, side="right") - 1
             hits = [(int(f), int(gg - self.off[f])) for f, gg in zip(fr, g)]

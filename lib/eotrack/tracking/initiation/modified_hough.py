@@ -43,6 +43,7 @@ from eotrack.validation import check_int, check_positive
 
 from .base import Frame, Track, validate_frames
 from .gating import TrackHandOff, canonical_order, check_velocity_gate
+from .pairs import PointGrid, cv_fit_batch, greedy_disjoint
 
 __all__ = ["ModifiedHoughInitiator", "ModifiedHoughRun", "line_through_points"]
 
@@ -130,6 +131,9 @@ class ModifiedHoughInitiator:
     neighbourhood: int = 6
     origin_px: tuple[float, float] = (0.0, 0.0)
     max_cells: int = 50_000_000
+    literal: bool = False
+    sigma_px: float = 0.3
+    alpha: float = 1e-3
 
     def __post_init__(self) -> None:
         check_positive(self.d_rho, "d_rho")
@@ -141,6 +145,15 @@ class ModifiedHoughInitiator:
         check_int(self.m, "m", min_value=2, max_value=_MAX_M)
         check_positive(self.handoff_gate_px, "handoff_gate_px")
         check_int(self.max_cells, "max_cells", min_value=1)
+        if not isinstance(self.literal, (bool, np.bool_)):
+            raise TypeError(f"literal must be True or False, got {self.literal!r}")
+        check_positive(self.sigma_px, "sigma_px")
+        a = check_positive(self.alpha, "alpha")
+        if not a < 1:
+            raise ValueError(f"alpha must lie in (0, 1), got {self.alpha}")
+        if not self.literal and self.m < 4:
+            raise ValueError(f"the verified initiator (literal=False) needs m >= 4 (a triplet "
+                             f"plus the window), got m={self.m}; use literal=True for m < 4")
         if self.neighbourhood not in (6, 26):
             raise ValueError(f"neighbourhood must be 6 (the paper's) or 26, got "
                              f"{self.neighbourhood!r}")
@@ -165,9 +178,13 @@ class ModifiedHoughInitiator:
         """
         fr = validate_frames(frames)
         perms = [canonical_order(f.xy) for f in fr]
+        times = np.array([f.time_s for f in fr])
+        if not self.literal:
+            xys = [f.xy[p] for f, p in zip(fr, perms)]
+            work = [Frame(float(t), x) for t, x in zip(times, xys)]
+            return _VerifiedEngine(self, xys, times, work, perms, log).run()
         o = np.asarray(self.origin_px, dtype=float)
         xys = [f.xy[p] - o for f, p in zip(fr, perms)]
-        times = np.array([f.time_s for f in fr])
         return _Engine(self, xys, times, fr, perms, log).run()
 
     def cell_of(self, xy_a: np.ndarray, t_a: float, xy_b: np.ndarray,
@@ -589,3 +606,220 @@ class _Engine:
             dth = math.pi - dth
             rho = -rho
         return abs(rho - rho_c) <= 1.5 * self.cfg.d_rho and dth <= 1.5 * self.d_theta
+
+
+
+class _VerifiedEngine:
+    """The improved initiator: triplets verified by a χ² test at the noise (internal).
+
+    See :class:`ModifiedHoughInitiator` (``literal=False``). At frame ``k`` the three triplet
+    shapes a 3-of-4 track can end with are searched: seeds ``(k−2, k)`` with the third
+    detection in ``k−1`` or ``k−3``, and seeds ``(k−3, k−1)`` with the third in ``k``. For every
+    seed pair at once (a broadcast over the two frames' detections, no pair list) the third
+    detection's predicted position is looked up in a dilated occupancy image of the target frame;
+    the few hits are checked exactly on a spatial grid inside the disc where the χ² test of the
+    three-point constant-velocity fit passes (that disc *is* the test). Passing triplets are
+    extended to the other frames of the window, ranked (more hits, then smaller χ²) and made
+    disjoint best-first.
+    """
+
+    def __init__(self, cfg: ModifiedHoughInitiator, xys, times, frames, perms, log: bool):
+        from scipy.stats import chi2
+
+        self.cfg = cfg
+        self.xys = xys
+        self.times = np.asarray(times, float)
+        self.fw = frames
+        self.perms = perms
+        self.log_on = log
+        self.m = cfg.m
+        self.need = cfg.m - 1
+        self.sigma = cfg.sigma_px
+        self.thr = np.array([np.inf, np.inf, np.inf]
+                            + [float(chi2.ppf(1.0 - cfg.alpha, 2 * (n - 2)))
+                               for n in range(3, cfg.m + 1)])
+        sizes = [len(x) for x in xys]
+        self.off = np.concatenate([[0], np.cumsum(sizes)]).astype(np.int64)
+        self.avail_flat = np.ones(int(self.off[-1]), dtype=bool)
+        self.available = [self.avail_flat[self.off[f]:self.off[f + 1]] for f in range(len(xys))]
+        self.xy_flat = np.concatenate(xys) if self.off[-1] else np.zeros((0, 2))
+        self.frame_of = np.repeat(np.arange(len(xys)), sizes)
+        self.handoff = TrackHandOff(cfg.handoff_gate_px)
+        self.log: list[dict] = []
+
+    def run(self) -> ModifiedHoughRun:
+        for k in range(len(self.xys)):
+            self._frame(k)
+        return ModifiedHoughRun(self.handoff.tracks(self.perms), self.log)
+
+    # -- the third-point search ------------------------------------------------
+    def _occupancy(self, f: int, r: float):
+        """Image (1 px pixels) marking every pixel that has a detection of frame ``f`` within
+        ``r`` of some point of it; zero border so clipped look-ups land on empty pixels."""
+        p = self.xys[f][self.available[f]]
+        rr = r + 0.7072  # pixel half-diagonal
+        n = math.ceil(rr)
+        x0 = math.floor(float(p[:, 0].min()) - rr) - 1
+        y0 = math.floor(float(p[:, 1].min()) - rr) - 1
+        w = math.ceil(float(p[:, 0].max()) + rr) - x0 + 2
+        h = math.ceil(float(p[:, 1].max()) + rr) - y0 + 2
+        occ = np.zeros(h * w, dtype=bool)
+        o = np.arange(-n, n + 1)
+        bx = np.floor(p[:, 0] - x0).astype(np.int64)
+        by = np.floor(p[:, 1] - y0).astype(np.int64)
+        cx = bx[:, None] + o[None, :]
+        cy = by[:, None] + o[None, :]
+        ex = (cx + x0 + 0.5 - p[:, 0:1]) ** 2
+        ey = (cy + y0 + 0.5 - p[:, 1:2]) ** 2
+        near = ex[:, None, :] + ey[:, :, None] <= rr * rr  # (n_pts, dy, dx)
+        pi, iy, ix = np.nonzero(near)
+        occ[cy[pi, iy] * w + cx[pi, ix]] = True
+        return occ, x0, y0, w, h
+
+    def _triplets(self, fa: int, fb: int, ft: int) -> np.ndarray:
+        """Triplets (seed in ``fa``, seed in ``fb``, third in ``ft``) passing the χ² disc test
+        and the (noise-widened) velocity gate; rows of global ids in frame order."""
+        cfg = self.cfg
+        ia_all = np.flatnonzero(self.available[fa])
+        ib_all = np.flatnonzero(self.available[fb])
+        if len(ia_all) == 0 or len(ib_all) == 0 or not np.any(self.available[ft]):
+            return np.zeros((0, 3), dtype=np.int64)
+        ta, tb, tt = self.times[fa], self.times[fb], self.times[ft]
+        dt = tb - ta
+        tau = (tt - tb) / dt
+        cfac = 1.0 + (1.0 + tau) ** 2 + tau**2  # var(x_t − prediction) / σ²
+        r = self.sigma * math.sqrt(self.thr[3] * cfac)
+        occ, x0, y0, w, h = self._occupancy(ft, r)
+        a = self.xys[fa][ia_all]
+        b = self.xys[fb][ib_all]
+        # prediction (1 + τ) b − τ a for every pair, as one outer sum per axis (float32)
+        f32 = np.float32
+        qx = ((1 + tau) * b[:, 0] - x0).astype(f32)[None, :] + (-tau * a[:, 0]).astype(f32)[:, None]
+        qy = ((1 + tau) * b[:, 1] - y0).astype(f32)[None, :] + (-tau * a[:, 1]).astype(f32)[:, None]
+        np.clip(qx, 0, w - 1, out=qx)
+        np.clip(qy, 0, h - 1, out=qy)
+        key = qy.astype(np.int32)
+        key *= w
+        key += qx.astype(np.int32)
+        sa, sb = np.nonzero(occ[key])
+        if len(sa) == 0:
+            return np.zeros((0, 3), dtype=np.int64)
+        d = b[sb] - a[sa]
+        v2 = (d[:, 0] ** 2 + d[:, 1] ** 2) / dt**2
+        slack = 4.0 * math.sqrt(2.0) * self.sigma / dt  # the gate is applied again to the fit
+        ok = (v2 >= max(cfg.v_min - slack, 0.0) ** 2) & (v2 <= (cfg.v_max + slack) ** 2)
+        sa, sb = sa[ok], sb[ok]
+        pred = (1 + tau) * b[sb] - tau * a[sa]
+        it_all = np.flatnonzero(self.available[ft])
+        qi, pi, _ = PointGrid(self.xys[ft][it_all], r).query(pred, r)
+        ga = self.off[fa] + ia_all[sa[qi]]
+        gb = self.off[fb] + ib_all[sb[qi]]
+        gt = self.off[ft] + it_all[pi]
+        return np.stack([ga, gb, gt], 1)
+
+    def _frame(self, k: int) -> None:
+        xy_k = self.xys[k]
+        avail_k = self.available[k]
+        self.handoff.claim(k, self.times[k], xy_k, avail_k)
+        lo = max(0, k - self.m + 1)
+        entry = {"frame": k, "time_s": float(self.times[k]), "candidates": int(avail_k.sum()),
+                 "triplets": 0, "candidate tracks": 0, "conflicts": 0, "confirmed": 0}
+        trip = []
+        if k - 2 >= lo:
+            trip.append(self._triplets(k - 2, k, k - 1))
+        if k - 3 >= lo:
+            trip.append(self._triplets(k - 2, k, k - 3))
+            trip.append(self._triplets(k - 3, k - 1, k))
+        rows = np.concatenate(trip) if trip else np.zeros((0, 3), dtype=np.int64)
+        entry["triplets"] = len(rows)
+        if len(rows):
+            self._confirm(k, rows, lo, entry)
+        if self.log_on:
+            self.log.append(entry)
+
+    # -- confirmation --------------------------------------------------------------
+    def _fit(self, rows: np.ndarray, slot_t: np.ndarray):
+        mask = rows >= 0
+        g = np.maximum(rows, 0)
+        tt = np.broadcast_to(slot_t, rows.shape)
+        tm, pm, v, rss = cv_fit_batch(tt, self.xy_flat[g, 0], self.xy_flat[g, 1], mask)
+        return mask, tm, pm, v, rss
+
+    def _confirm(self, k: int, trip: np.ndarray, lo: int, entry: dict) -> None:
+        cfg = self.cfg
+        m = self.m
+        first = k - m + 1
+        slot_t = self.times[np.clip(np.arange(first, k + 1), 0, None)]
+        rows = np.full((len(trip), m), -1, dtype=np.int64)
+        np.put_along_axis(rows, self.frame_of[trip] - first, trip, axis=1)
+        rows = self._extend(rows, slot_t, lo, first)
+        mask, _tm, pm, v, rss = self._fit(rows, slot_t)
+        nh = mask.sum(axis=1)
+        chi = rss / self.sigma**2
+        speed = np.hypot(v[:, 0], v[:, 1])
+        ok = ((nh >= self.need) & (chi <= self.thr[nh]) & (speed >= cfg.v_min)
+              & (speed <= cfg.v_max))
+        rows, pm, v, chi, nh = rows[ok], pm[ok], v[ok], chi[ok], nh[ok]
+        entry["candidate tracks"] = len(rows)
+        if len(rows) == 0:
+            return
+        order = np.lexsort((chi, -nh))
+        pos = np.empty(len(rows), dtype=np.int64)
+        pos[order] = np.arange(len(rows))
+        win = greedy_disjoint(rows, pos, len(self.avail_flat))
+        entry["conflicts"] = int(len(rows) - len(win))
+        entry["confirmed"] = len(win)
+        if len(win) == 0:
+            return
+        rows, pm, v, chi, nh = rows[win], pm[win], v[win], chi[win], nh[win]
+        self.avail_flat[rows[rows >= 0]] = False
+        infos = _track_infos(pm, v, cfg.origin_px)
+        for i in range(len(rows)):
+            gi = rows[i][rows[i] >= 0]
+            f = self.frame_of[gi]
+            hits = list(zip(f.tolist(), (gi - self.off[f]).tolist()))
+            info = infos[i]
+            info.update(method="modified_hough", chi2=float(chi[i]), n_hits=int(nh[i]))
+            self.handoff.confirm(hits, k, self.fw, info=info)
+
+    def _extend(self, rows: np.ndarray, slot_t: np.ndarray, lo: int, first: int) -> np.ndarray:
+        """Add, per row, the nearest available detection of each empty window slot inside the
+        gate of the constant-velocity prediction (the full χ² test follows)."""
+        m = self.m
+        for s in range(m):
+            f = first + s
+            if f < lo or not np.any(self.available[f]):
+                continue
+            emp = np.flatnonzero(rows[:, s] < 0)
+            if len(emp) == 0:
+                continue
+            sub = rows[emp]
+            mask, tm, pm, v, _ = self._fit(sub, slot_t)
+            nh = mask.sum(axis=1)
+            dtc = (slot_t[None, :] - tm[:, None]) * mask
+            var = 1.0 + 1.0 / nh + (slot_t[s] - tm) ** 2 / (dtc * dtc).sum(axis=1)
+            pred = pm + v * (slot_t[s] - tm)[:, None]
+            r = self.sigma * np.sqrt(self.thr[min(m, 4)] * var)
+            it_all = np.flatnonzero(self.available[f])
+            qi, pi, d2 = PointGrid(self.xys[f][it_all], float(r.max())).query(pred, r)
+            if len(qi) == 0:
+                continue
+            o = np.lexsort((d2, qi))
+            qi, pi = qi[o], pi[o]
+            keep = np.r_[True, qi[1:] != qi[:-1]]
+            ext = sub[qi[keep]].copy()
+            ext[:, s] = self.off[f] + it_all[pi[keep]]
+            rows = np.concatenate([rows, ext])
+        return rows
+
+
+def _track_infos(p_mean: np.ndarray, v: np.ndarray, origin) -> list[dict]:
+    """ρ, θ (about ``origin``), speed and direction of fitted constant-velocity tracks."""
+    b = np.asarray(p_mean, float) - np.asarray(origin, float)
+    rho, theta, speed, s = _pair_params(b - v, b, 1.0)
+    theta = np.degrees(theta)
+    pm = np.asarray(p_mean, float)
+    return [{"rho_px": float(rho[i]), "theta_deg": float(theta[i]),
+             "speed_px_s": float(speed[i]), "s": int(s[i]),
+             "xy_mean_px": (float(pm[i, 0]), float(pm[i, 1])),
+             "velocity_px_s": (float(v[i, 0]), float(v[i, 1]))} for i in range(len(pm))]
