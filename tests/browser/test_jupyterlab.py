@@ -1,13 +1,37 @@
-"""A real browser: JupyterLab in headless Chromium runs notebook 01 and a slider redraws the figure.
+"""A real browser: JupyterLab in headless Chromium runs every notebook and moves every panel.
+
+For each ``notebooks/0[1-9]*.ipynb`` (a copy in a temporary tree shaped like the repository, so
+``../papers_repro`` paths resolve): clear the outputs, run all cells, then
+
+- no error and no stderr output anywhere (cell outputs and the panels' output widgets; Python
+  warnings go to stderr, so a warning fails too — its text is in the failure message);
+- no stray ``<function ...>`` or ``(<Figure size ...>`` text;
+- every panel (``.eotrack-panel``, and ``.widget-interact`` for notebooks not yet converted):
+  move its first control one step (slider: focus the handle, ArrowRight; toggle: click;
+  dropdown: next option) and the figure image must change. The change-to-settled time
+  (image replaced and the kernel idle again) is recorded per panel and printed as a table at
+  the end of the run, also written to ``$EOTRACK_BROWSER_LATENCY``
+  (default ``/tmp/eotrack-browser-latency.txt``). A benchmark, not a timed assertion.
+
+Notebooks run in one JupyterLab server, ``$EOTRACK_BROWSER_PARALLEL`` at a time (default 2),
+each in its own tab; the panels are timed afterwards, one notebook at a time, with every other
+kernel idle.
+
+``test_open_save_keeps_files`` opens a notebook written by ``.ci/execute_notebooks.py`` (with
+its ``.py`` twin and the repository's jupytext pairing) and saves it with Ctrl+S: neither file
+may change, and the notebook must not be marked modified on open.
 
 Needs Debian's ``chromium`` (``apt-get install chromium``) and the ``playwright`` Python package
 (driving that Chromium through ``executable_path``; ``playwright install`` is never used, it
-downloads). Without Chromium the test is skipped with that message, unless
+downloads). Without Chromium the tests are skipped with that message, unless
 ``EOTRACK_REQUIRE_BROWSER=1`` (set by CI), which turns the skip into a failure.
 """
 
 from __future__ import annotations
 
+import difflib
+import importlib.util
+import json
 import os
 import shutil
 import socket
@@ -15,6 +39,7 @@ import subprocess
 import sys
 import time
 import urllib.request
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import pytest
@@ -22,10 +47,50 @@ import pytest
 pytestmark = pytest.mark.browser
 
 ROOT = Path(__file__).resolve().parents[2]
-NOTEBOOK = ROOT / "notebooks" / "01_wransac_trajectory_prediction.ipynb"
+NOTEBOOKS = sorted((ROOT / "notebooks").glob("0[1-9]*.ipynb"))
+ROUNDTRIP = NOTEBOOKS[0] if NOTEBOOKS else None
 CHROMIUM_FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic",
                   "--no-first-run", "--disable-background-networking",
                   "--disable-component-update", "--disable-sync"]
+PARALLEL = max(1, int(os.environ.get("EOTRACK_BROWSER_PARALLEL", "2")))
+RUN_TIMEOUT_S = float(os.environ.get("EOTRACK_BROWSER_RUN_TIMEOUT", "1200"))
+SETTLE_TIMEOUT_S = 60.0
+PANELS = ".eotrack-panel, .widget-interact"
+STRAY = ("<function ", "(<Figure size")
+TOKEN = "eotrack-browser-test"
+# JupyterLab settings for the test server: every cell in the DOM, no autosave, no news toast
+LAB_SETTINGS = {
+    "@jupyterlab/notebook-extension/tracker.jupyterlab-settings": {"windowingMode": "none"},
+    "@jupyterlab/docmanager-extension/plugin.jupyterlab-settings": {"autosave": False},
+    "@jupyterlab/apputils-extension/notification.jupyterlab-settings": {
+        "fetchNews": "false", "checkForUpdates": False},
+}
+
+# -- JavaScript run in the JupyterLab page (the app is exposed: expose_app_in_browser) ------
+JS_STATUS = """() => {
+  const app = window.jupyterapp;
+  const p = app && app.shell.currentWidget;
+  if (!p || !p.content || !p.sessionContext) return null;
+  const s = p.sessionContext.session;
+  const k = s && s.kernel;
+  const cells = p.content.widgets.filter(c => c.model.type === 'code');
+  return {kernel: k ? k.status : 'none',
+          total: cells.length,
+          done: cells.filter(c => c.model.executionCount !== null).length,
+          running: cells.filter(c => c.model.executionState === 'running').length,
+          dirty: p.context.model.dirty};
+}"""
+JS_SETTLED = """([panel, before]) => {
+  const imgs = panel.querySelectorAll('img');
+  const src = imgs.length ? imgs[imgs.length - 1].getAttribute('src') : null;
+  const p = window.jupyterapp.shell.currentWidget;
+  const k = p.sessionContext.session.kernel;
+  if (src && src !== before && k.status === 'idle') return performance.now();
+  return false;
+}"""
+JS_TOP_PANELS = """(sel) => Array.from(document.querySelectorAll(sel))
+  .filter(el => !(el.parentElement && el.parentElement.closest(sel)))
+  .map((el, i) => { el.setAttribute('data-eotrack-panel', String(i)); return i; })"""
 
 
 def _chromium() -> str | None:
@@ -42,6 +107,13 @@ def _free_port() -> int:
         return s.getsockname()[1]
 
 
+def _ci_module(name: str):
+    spec = importlib.util.spec_from_file_location(name, ROOT / ".ci" / f"{name}.py")
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
 @pytest.fixture(scope="module")
 def chromium() -> str:
     path = _chromium()
@@ -55,88 +127,291 @@ def chromium() -> str:
     return path
 
 
+@dataclass
+class Lab:
+    base: str
+    work: Path
+
+
 @pytest.fixture(scope="module")
-def lab(tmp_path_factory):
-    """JupyterLab serving a temporary copy of the notebook (autosave rewrites files)."""
+def lab(chromium, tmp_path_factory):
+    """One JupyterLab server over a temporary tree shaped like the repository."""
     work = tmp_path_factory.mktemp("lab")
-    shutil.copy(NOTEBOOK, work / NOTEBOOK.name)
-    port, token = _free_port(), "eotrack-browser-test"
-    env = {k: v for k, v in os.environ.items() if k != "MPLBACKEND"}  # the kernel must plot inline
-    proc = subprocess.Popen(
-        [sys.executable, "-m", "jupyterlab", "--no-browser", "--allow-root", f"--port={port}",
-         "--ip=127.0.0.1", f"--IdentityProvider.token={token}", f"--ServerApp.root_dir={work}"],
-        cwd=work, env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT)
+    (work / "notebooks").mkdir()
+    for nb in NOTEBOOKS:
+        shutil.copy(nb, work / "notebooks" / nb.name)
+    for d in ("papers_repro", "data"):
+        if (ROOT / d).is_dir():
+            shutil.copytree(ROOT / d, work / d)
+    settings = tmp_path_factory.mktemp("lab-settings")
+    for rel, value in LAB_SETTINGS.items():
+        f = settings / rel
+        f.parent.mkdir(parents=True, exist_ok=True)
+        f.write_text(json.dumps(value))
+    port = _free_port()
+    env = {k: v for k, v in os.environ.items() if k != "MPLBACKEND"}  # kernels plot inline
+    env["EOTRACK_PAPERS_REPRO"] = str(work / "papers_repro")  # a notebook never writes the repo
+    cmd = [sys.executable, "-m", "jupyterlab", "--no-browser", f"--port={port}",
+           "--ip=127.0.0.1", f"--IdentityProvider.token={TOKEN}",
+           f"--ServerApp.root_dir={work}", "--LabApp.expose_app_in_browser=True",
+           f"--LabApp.user_settings_dir={settings}",
+           f"--LabApp.workspaces_dir={tmp_path_factory.mktemp('lab-workspaces')}"]
+    if os.geteuid() == 0:
+        cmd.append("--allow-root")
+    log = open(work.parent / "lab-server.log", "wb")
+    proc = subprocess.Popen(cmd, cwd=work, env=env, stdout=log, stderr=subprocess.STDOUT)
     base = f"http://127.0.0.1:{port}"
-    deadline = time.time() + 90
+    deadline = time.time() + 120
     while time.time() < deadline:
         try:
-            urllib.request.urlopen(f"{base}/api/status?token={token}", timeout=2)
+            urllib.request.urlopen(f"{base}/api/status?token={TOKEN}", timeout=2)
             break
         except OSError:
             if proc.poll() is not None:
-                raise RuntimeError(proc.stdout.read().decode(errors="replace")) from None
+                raise RuntimeError((work.parent / "lab-server.log").read_text()) from None
             time.sleep(0.5)
     else:
         proc.kill()
-        raise RuntimeError("JupyterLab did not start within 90 s")
-    yield f"{base}/lab/tree/{NOTEBOOK.name}?token={token}"
+        raise RuntimeError("JupyterLab did not start within 120 s")
+    yield Lab(base, work)
     proc.terminate()
     try:
         proc.wait(timeout=20)
     except subprocess.TimeoutExpired:
         proc.kill()
+    log.close()
 
 
-def _figure_src(page) -> str | None:
-    imgs = page.locator(".widget-interact img")
-    if imgs.count() == 0:
-        return None
-    return imgs.last.get_attribute("src")
-
-
-def test_slider_redraws_figure(chromium, lab):
+@pytest.fixture(scope="module")
+def browser(lab, chromium):
     from playwright.sync_api import sync_playwright
 
-    with sync_playwright() as pw:
-        browser = pw.chromium.launch(executable_path=chromium, args=CHROMIUM_FLAGS)
-        page = browser.new_page(viewport={"width": 1400, "height": 1000})
-        page.set_default_timeout(120_000)
-        page.goto(lab)
-        page.locator(".jp-NotebookPanel").first.wait_for()
-        # wait for the kernel, then Run → Run All Cells
-        page.locator(".jp-Notebook-ExecutionIndicator[data-status='idle']").first.wait_for(
-            timeout=120_000)
-        page.wait_for_timeout(5000)  # let the kernel connection settle before queueing cells
-        page.get_by_role("menuitem", name="Run", exact=True).click()
-        page.get_by_role("menuitem", name="Run All Cells", exact=True).click()
-        # the Explore panel appears with its figure once every cell above has run
-        # (JupyterLab virtualises off-screen cells: wait for attachment, then scroll to it)
-        slider = page.locator(".widget-interact .widget-slider").first
-        try:
-            slider.wait_for(state="attached", timeout=480_000)
-        except Exception:
-            shot = Path(os.environ.get("TMPDIR", "/tmp")) / "eotrack-browser-failure.png"
-            page.screenshot(path=str(shot))
-            raise AssertionError(f"the Explore panel never appeared; screenshot: {shot}") from None
-        slider.scroll_into_view_if_needed()
-        deadline = time.time() + 120
-        while _figure_src(page) is None and time.time() < deadline:
-            page.wait_for_timeout(500)
-        before = _figure_src(page)
-        assert before, "the Explore panel drew no figure"
-        readout = page.locator(".widget-interact .widget-slider .widget-readout").first
-        old_value = readout.inner_text()
-        # move the σ slider one step with the keyboard (continuous_update=False: on release)
-        handle = page.locator(".widget-interact .widget-slider .noUi-handle").first
-        handle.scroll_into_view_if_needed()
+    pw = sync_playwright().start()
+    b = pw.chromium.launch(executable_path=chromium, args=CHROMIUM_FLAGS)
+    yield b
+    b.close()
+    pw.stop()
+
+
+def _open(browser, lab: Lab, rel: str, workspace: str):
+    page = browser.new_page(viewport={"width": 1400, "height": 1000})
+    page.set_default_timeout(120_000)
+    page.goto(f"{lab.base}/lab/workspaces/{workspace}/tree/{rel}?token={TOKEN}")
+    page.locator(".jp-NotebookPanel").first.wait_for()
+    page.wait_for_function(f"({JS_STATUS})() && ({JS_STATUS})().kernel === 'idle'",
+                           timeout=180_000)
+    page.wait_for_timeout(2000)  # let the kernel connection settle before queueing cells
+    return page
+
+
+@dataclass
+class Run:
+    name: str
+    page: object = None
+    started: float = 0.0
+    quiet: float = 0.0  # since when nothing has changed
+    seconds: float = float("nan")
+    status: dict = field(default_factory=dict)
+    error: str = ""
+
+
+def _selected(request) -> list[str]:
+    names = []
+    for item in request.session.items:
+        cs = getattr(item, "callspec", None)
+        if item.module.__name__ == __name__ and cs and "notebook" in cs.params:
+            names.append(cs.params["notebook"])
+    return names
+
+
+@pytest.fixture(scope="module")
+def runs(request, browser, lab) -> dict[str, Run]:
+    """Open the selected notebooks and run all their cells, PARALLEL tabs at a time."""
+    queue = [Run(n) for n in _selected(request)]
+    active: list[Run] = []
+    done: dict[str, Run] = {}
+    t_all = time.perf_counter()
+    while queue or active:
+        while queue and len(active) < PARALLEL:
+            r = queue.pop(0)
+            try:
+                r.page = _open(browser, lab, f"notebooks/{r.name}", r.name.split("_")[0])
+                # (no `return`: execute's promise resolves only when every cell has run)
+                r.page.evaluate("async () => { await window.jupyterapp.commands.execute("
+                                "'notebook:clear-all-cell-outputs'); }")
+                r.page.evaluate("() => { window.jupyterapp.commands.execute("
+                                "'notebook:run-all-cells'); }")
+                r.started = r.quiet = time.perf_counter()
+                active.append(r)
+            except Exception as exc:
+                r.error = f"could not open and start {r.name}: {exc}"
+                done[r.name] = r
+        time.sleep(1.0)
+        for r in list(active):
+            st = r.page.evaluate(JS_STATUS) or {}
+            now = time.perf_counter()
+            busy = st.get("kernel") != "idle" or st.get("running", 1) > 0
+            if busy or st != r.status:
+                r.quiet = now
+            r.status = st
+            finished = not busy and now - r.quiet > 3.0
+            if finished or now - r.started > RUN_TIMEOUT_S:
+                r.seconds = now - r.started - (3.0 if finished else 0.0)
+                if not finished:
+                    r.error = f"{r.name}: still running after {RUN_TIMEOUT_S:.0f} s ({st})"
+                active.remove(r)
+                done[r.name] = r
+    print(f"\n[browser] ran {len(done)} notebook(s) in {time.perf_counter() - t_all:.0f} s "
+          f"({PARALLEL} tab(s) at a time)")
+    yield done
+    for r in done.values():
+        if r.page is not None:
+            r.page.close()
+
+
+def _output_problems(page) -> list[str]:
+    problems = []
+    stderr = page.locator(".jp-NotebookPanel .jp-OutputArea-output"
+                          "[data-mime-type='application/vnd.jupyter.stderr']")
+    for i in range(stderr.count()):
+        text = stderr.nth(i).inner_text()
+        kind = "error" if "Traceback" in text or "Error" in text.split("\n")[0] else "stderr"
+        problems.append(f"{kind} output: {text.strip()[:600]}")
+    outputs = page.locator(".jp-NotebookPanel .jp-OutputArea-output")
+    texts = outputs.evaluate_all("els => els.map(e => e.innerText)")
+    for text in texts:
+        for s in STRAY:
+            if s in text:
+                line = next(x for x in text.splitlines() if s in x)
+                problems.append(f"stray repr in an output: {line.strip()[:200]}")
+    return problems
+
+
+def _move_first_control(page, panel) -> str:
+    """Move the panel's first control one step; return a description of what was moved."""
+    control = panel.locator(".widget-slider, .widget-toggle-button, .widget-checkbox, "
+                            ".widget-dropdown").first
+    if control.count() == 0:
+        raise AssertionError("panel has no slider, toggle, checkbox or dropdown")
+    classes = control.get_attribute("class") or ""
+    label = control.locator(".widget-label").first
+    name = label.inner_text().strip() if label.count() else "?"
+    control.scroll_into_view_if_needed()
+    if "widget-slider" in classes:
+        handle = control.locator(".noUi-handle").first
+        now, hi = handle.get_attribute("aria-valuenow"), handle.get_attribute("aria-valuemax")
+        key = "ArrowLeft" if now is not None and now == hi else "ArrowRight"
         handle.focus()
-        handle.press("ArrowRight")
-        deadline = time.time() + 120
-        after = before
-        while after == before and time.time() < deadline:
-            page.wait_for_timeout(500)
-            after = _figure_src(page) or before
-        new_value = readout.inner_text()
-        browser.close()
-    assert new_value != old_value, f"slider value did not change ({old_value})"
-    assert after != before, "the figure did not change after the slider moved"
+        handle.press(key)
+        return f"slider {name!r} {key}"
+    if "widget-dropdown" in classes:
+        select = control.locator("select")
+        n = select.locator("option").count()
+        i = select.evaluate("s => s.selectedIndex")
+        select.select_option(index=(i + 1) % n)
+        return f"dropdown {name!r} → option {(i + 1) % n}"
+    if "widget-checkbox" in classes:
+        control.locator("input").click()
+        return f"checkbox {name!r}"
+    control.click()
+    return f"toggle {control.inner_text().strip()!r}"
+
+
+def _panel_latencies(page, notebook: str, rows: list[dict]) -> list[str]:
+    problems = []
+    n = len(page.evaluate(JS_TOP_PANELS, PANELS))
+    if n == 0:
+        problems.append("no widget panel found (.eotrack-panel / .widget-interact)")
+    for i in range(n):
+        panel = page.locator(f"[data-eotrack-panel='{i}']")
+        panel.scroll_into_view_if_needed()
+        imgs = panel.locator("img")
+        deadline = time.time() + 60
+        while imgs.count() == 0 and time.time() < deadline:
+            page.wait_for_timeout(250)
+        if imgs.count() == 0:
+            problems.append(f"panel {i}: shows no figure")
+            continue
+        before = imgs.last.get_attribute("src")
+        page.wait_for_timeout(300)
+        t0 = page.evaluate("performance.now()")
+        try:
+            what = _move_first_control(page, panel)
+        except Exception as exc:
+            problems.append(f"panel {i}: could not move a control: {exc}")
+            continue
+        try:
+            t1 = page.wait_for_function(JS_SETTLED, arg=[panel.element_handle(), before],
+                                        polling="raf", timeout=SETTLE_TIMEOUT_S * 1000)
+            ms = t1.json_value() - t0
+            rows.append({"notebook": notebook, "panel": i, "control": what,
+                                 "settled_s": ms / 1000})
+        except Exception:
+            rows.append({"notebook": notebook, "panel": i, "control": what,
+                                 "settled_s": float("nan")})
+            problems.append(f"panel {i}: the figure did not change within "
+                            f"{SETTLE_TIMEOUT_S:.0f} s after {what}")
+    return problems
+
+
+@pytest.mark.parametrize("notebook", [p.name for p in NOTEBOOKS])
+def test_notebook_runs_and_panels_redraw(notebook, runs, latency_rows):
+    r = runs[notebook]
+    if r.error:
+        pytest.fail(r.error)
+    st = r.status
+    problems = []
+    if st.get("done") != st.get("total"):
+        problems.append(f"only {st.get('done')} of {st.get('total')} code cells ran "
+                        "(an error stopped the run?)")
+    problems += _output_problems(r.page)
+    problems += _panel_latencies(r.page, notebook, latency_rows)
+    problems += [f"after moving the panels: {p}" for p in _output_problems(r.page)
+                 if p not in problems]
+    print(f"\n[browser] {notebook}: all cells in {r.seconds:.0f} s; "
+          f"{sum(row['notebook'] == notebook for row in latency_rows)} panel(s) moved")
+    # shut the kernel down: frees its memory for the notebooks still to be checked
+    r.page.evaluate("() => window.jupyterapp.shell.currentWidget.sessionContext.shutdown()")
+    assert not problems, f"{notebook}:\n  " + "\n  ".join(problems)
+
+
+@pytest.mark.skipif(ROUNDTRIP is None, reason="no notebook to open")
+def test_open_save_keeps_files(browser, lab, tmp_path):
+    """Ctrl+S on a notebook stored by .ci/execute_notebooks.py changes neither file of the pair."""
+    ex = _ci_module("execute_notebooks")
+    repo = lab.work / "roundtrip"
+    (repo / "notebooks" / "py").mkdir(parents=True)
+    shutil.copy(ROOT / "pyproject.toml", repo / "pyproject.toml")
+    ipynb = repo / "notebooks" / ROUNDTRIP.name
+    py = ex.pair_of(ipynb)
+    shutil.copy(ROUNDTRIP, ipynb)
+    shutil.copy(ex.pair_of(ROUNDTRIP), py)
+    # store it as `.ci/execute_notebooks.py` would (without re-executing: same writer)
+    nb = ex.load_inputs(py)
+    ex.save_pair(ex.stable_widget_ids(ex.normalise(nb)), ipynb, repo)
+    before = {f: f.read_bytes() for f in (ipynb, py)}
+    mtime = ipynb.stat().st_mtime_ns
+    page = _open(browser, lab, f"roundtrip/notebooks/{ROUNDTRIP.name}", "roundtrip")
+    try:
+        page.wait_for_timeout(2000)
+        dirty_on_open = page.evaluate(JS_STATUS)["dirty"]
+        page.locator(".jp-NotebookPanel .jp-Notebook").first.click(position={"x": 5, "y": 5})
+        page.keyboard.press("Control+s")
+        deadline = time.time() + 60
+        while ipynb.stat().st_mtime_ns == mtime and time.time() < deadline:
+            page.wait_for_timeout(250)
+        saved = ipynb.stat().st_mtime_ns != mtime
+        page.wait_for_timeout(1000)
+        page.evaluate("() => window.jupyterapp.shell.currentWidget.sessionContext.shutdown()")
+    finally:
+        page.close()
+    assert saved, "Ctrl+S did not save the notebook"
+    assert not dirty_on_open, "JupyterLab marked the notebook modified on open"
+    diffs = []
+    for f, old in before.items():
+        new = f.read_bytes()
+        if new != old:
+            d = difflib.unified_diff(old.decode().splitlines(), new.decode().splitlines(),
+                                     str(f.relative_to(repo)), "after Ctrl+S", lineterm="", n=1)
+            diffs.append("\n".join(list(d)[:40]))
+    assert not diffs, "open + save changed the pair:\n" + "\n".join(diffs)

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import importlib.metadata as md
+import numbers
 
 import numpy as np
 import pandas as pd
@@ -33,14 +34,26 @@ def format_sig(x: float, digits: int = DISPLAY_SIGNIFICANT) -> str:
     ------
     ValueError
         If ``digits`` is not a positive integer.
+    TypeError
+        If ``x`` is not a real number.
     """
+    if isinstance(x, bool) or not isinstance(x, numbers.Real):
+        raise TypeError(f"x must be a real number, got {x!r}")
     if isinstance(digits, bool) or not isinstance(digits, int | np.integer) or digits < 1:
         raise ValueError(f"digits must be a positive integer, got {digits!r}")
     return f"{x:.{int(digits)}g}"
 
 
 def versions(packages: tuple[str, ...] = _PACKAGES) -> dict[str, str]:
-    """Installed versions of ``packages`` (``'not installed'`` where missing)."""
+    """Installed versions of ``packages`` (``'not installed'`` where missing).
+
+    Raises
+    ------
+    TypeError
+        If ``packages`` is a string or holds anything but distribution names (strings).
+    """
+    if isinstance(packages, str) or not all(isinstance(p, str) and p for p in packages):
+        raise TypeError(f"packages must be a sequence of distribution names, got {packages!r}")
     out = {}
     for p in packages:
         try:
