@@ -196,7 +196,7 @@ def experiment_table(ex: dict[str, Any], sweep: pd.DataFrame, st: SequenceSettin
         ("Fig. 6", "main target: fraction of its frames in a confirmed track", np.nan,
          float(tab["mean coverage"].iloc[0])),
         ("Fig. 6", "false tracks per sequence", np.nan, float(np.mean(ex["false_tracks"]))),
-        ("Fig. 7", "curved target: frames tracked (of its 30)", float(ps["curved_frames"]),
+        ("Fig. 7", f"curved target: frames tracked (of its {st.curved_frames})", float(ps["curved_frames"]),
          curved_cov * st.curved_frames),
         ("Fig. 7", "SNR at which the curved target is recovered in >= 50 % of runs",
          ps["curved_snr"], snr50),
