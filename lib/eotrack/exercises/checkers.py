@@ -7,6 +7,7 @@ where the answer is a definition (a choice, a formula's exponent).
 
 from __future__ import annotations
 
+import copy
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from typing import Any
@@ -19,7 +20,12 @@ __all__ = ["ArrayAnswer", "CheckResult", "Checker", "Choice", "FunctionAnswer",
 
 @dataclass(frozen=True)
 class CheckResult:
-    """The verdict on one answer; truthy when right. Its text never contains the solution."""
+    """The verdict on one answer; truthy when right. Its text never contains the solution.
+
+    In a notebook it shows as one Markdown line (✅ right / ❌ not yet, with the hint);
+    :func:`eotrack.exercises.check` shows it as soon as it is computed, so the check also
+    shows inside an ``if`` block, and the returned value is not shown a second time.
+    """
 
     exercise: str
     correct: bool
@@ -35,6 +41,26 @@ class CheckResult:
     def _repr_markdown_(self) -> str:
         mark = "✅ **right**" if self.correct else "❌ **not yet**"
         return f"{self.exercise}: {mark} — {self.message}"
+
+    def show(self) -> None:
+        """Display the verdict (Markdown in a Jupyter kernel, a plain line elsewhere)."""
+        try:
+            from IPython import get_ipython
+
+            shell = get_ipython()
+        except ImportError:  # pragma: no cover - IPython is a dependency of the notebooks
+            shell = None
+        if shell is not None and getattr(shell, "kernel", None) is not None:
+            from IPython.display import Markdown, display
+
+            display(Markdown(self._repr_markdown_()))
+        else:
+            print(self)
+
+    def _ipython_display_(self) -> None:
+        if self.__dict__.pop("_shown", False):  # check() has just shown it: skip once
+            return
+        self.show()
 
 
 def _resolve(expected: Any) -> Any:
@@ -78,6 +104,13 @@ class Checker:
         return CheckResult(self.exercise, ok, msg)
 
 
+def _check_tolerances(rtol: Any, atol: Any) -> None:
+    for name, v in (("rtol", rtol), ("atol", atol)):
+        if isinstance(v, bool) or not isinstance(v, int | float) or not v >= 0 \
+                or not np.isfinite(v):
+            raise ValueError(f"{name} must be a finite number >= 0, got {v!r}")
+
+
 def _as_float(answer: Any, what: str) -> float:
     if isinstance(answer, bool) or not isinstance(answer, int | float | np.integer | np.floating):
         if isinstance(answer, np.ndarray) and answer.shape == ():
@@ -103,6 +136,7 @@ class NumericAnswer(Checker):
     def __post_init__(self) -> None:
         if self.expected is None:
             raise ValueError("NumericAnswer needs expected (a number or a callable)")
+        _check_tolerances(self.rtol, self.atol)
         self._lazy = _Lazy(self.expected)
 
     def validate(self, answer: Any) -> float:
@@ -125,6 +159,7 @@ class ArrayAnswer(Checker):
     def __post_init__(self) -> None:
         if self.expected is None:
             raise ValueError("ArrayAnswer needs expected (an array or a callable)")
+        _check_tolerances(self.rtol, self.atol)
         self._lazy = _Lazy(self.expected)
 
     def validate(self, answer: Any) -> np.ndarray:
@@ -163,6 +198,10 @@ class FunctionAnswer(Checker):
     def __post_init__(self) -> None:
         if self.reference is None or self.inputs is None:
             raise ValueError("FunctionAnswer needs reference and inputs")
+        if not callable(self.reference) or not callable(self.inputs):
+            raise TypeError("FunctionAnswer: reference and inputs must be callables")
+        _check_tolerances(self.rtol, self.atol)
+        self._why = ""
 
     def validate(self, answer: Any) -> Callable[..., Any]:
         if not callable(answer):
@@ -170,16 +209,36 @@ class FunctionAnswer(Checker):
         return answer
 
     def judge(self, answer: Callable[..., Any]) -> bool:
-        for args in self.inputs():
-            want = np.asarray(self.reference(*args), dtype=float)
+        """Run ``answer`` on every hidden input (on copies, so it cannot alter them)."""
+        self._why = ""
+        for k, args in enumerate(self.inputs(), start=1):
+            want = np.asarray(self.reference(*copy.deepcopy(args)), dtype=float)
             try:
-                got = np.asarray(answer(*args), dtype=float)
-            except Exception:  # the student's function failed on a hidden input: wrong
+                out = answer(*copy.deepcopy(args))
+            except Exception as exc:  # the student's function failed on a hidden input: wrong
+                self._why = (f"your function raised {type(exc).__name__} on hidden input {k}"
+                             f"{': ' + str(exc)[:120] if str(exc) else ''}")
                 return False
-            if got.shape != want.shape or not np.allclose(got, want, rtol=self.rtol,
-                                                          atol=self.atol):
+            try:
+                got = np.asarray(out, dtype=float)
+            except (TypeError, ValueError):
+                self._why = (f"your function returned {type(out).__name__} on hidden input {k}, "
+                             "not numbers")
+                return False
+            if got.shape != want.shape:
+                self._why = (f"your function returned shape {got.shape} on hidden input {k}; "
+                             f"expected shape {want.shape}")
+                return False
+            if not np.allclose(got, want, rtol=self.rtol, atol=self.atol, equal_nan=True):
+                self._why = f"your function's output differs on hidden input {k}"
                 return False
         return True
+
+    def __call__(self, answer: Any) -> CheckResult:
+        result = super().__call__(answer)
+        if result.correct or not self._why:
+            return result
+        return CheckResult(result.exercise, False, f"{self._why}; {result.message}")
 
 
 @dataclass

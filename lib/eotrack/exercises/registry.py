@@ -70,8 +70,8 @@ def get_checker(exercise_id: str) -> Checker:
     slug = exercise_id.split(".")[0]
     _load(slug)
     if exercise_id not in _REGISTRY:
-        known = exercise_ids(slug) if slug in _paper_modules() else []
-        papers = _paper_modules()
+        known = sorted(k for k in _REGISTRY if k.split(".")[0] == slug)
+        papers = sorted(set(_paper_modules()) | {k.split(".")[0] for k in _REGISTRY})
         raise ValueError(f"unknown exercise {exercise_id!r}; "
                          + (f"known for {slug!r}: {known}" if known else
                             f"papers with exercises: {papers}"))
@@ -81,9 +81,14 @@ def get_checker(exercise_id: str) -> Checker:
 def check(exercise_id: str, answer: Any) -> CheckResult:
     """Check ``answer`` to exercise ``exercise_id``; show right/wrong with a hint, return it.
 
+    The verdict is shown at once (a Markdown line in a notebook, printed elsewhere), so it
+    appears even when ``check`` is called inside an ``if`` block.
+
     The result is truthy when the answer is right and never contains the solution. A wrong
     type or shape of answer raises ``TypeError``/``ValueError`` saying what was expected.
     """
     checker = get_checker(exercise_id)
     result = checker(answer)
+    result.show()
+    object.__setattr__(result, "_shown", True)  # a notebook does not show it twice
     return result
