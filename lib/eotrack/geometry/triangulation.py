@@ -18,6 +18,7 @@ from eotrack.validation import as_finite_array, check_choice, check_positive
 
 __all__ = [
     "CombinedEstimate",
+    "closest_points_two_rays",
     "combine_estimates",
     "max_z_score",
     "triangulate_rays",
@@ -30,6 +31,46 @@ def _unit(d: np.ndarray, name: str) -> np.ndarray:
     if np.any(n == 0):
         raise ValueError(f"{name} contains a zero direction vector")
     return d / n
+
+
+def closest_points_two_rays(o1, d1, o2, d2) -> tuple[np.ndarray, np.ndarray]:
+    """The two ends of the common perpendicular of two rays (vectorised).
+
+    Parameters
+    ----------
+    o1, o2
+        Ray origins ``(..., 3)``.
+    d1, d2
+        Directions ``(..., 3)`` (any length > 0).
+
+    Returns
+    -------
+    (q1, q2) : numpy.ndarray
+        ``q1`` on ray 1 and ``q2`` on ray 2, each ``(..., 3)``; ``|q2 − q1|`` is the miss
+        distance and their midpoint the two-ray triangulation.
+
+    Raises
+    ------
+    ValueError
+        Parallel rays (no unique closest points), bad shapes or zero directions.
+    """
+    a1 = as_finite_array(o1, "o1")
+    a2 = as_finite_array(o2, "o2")
+    u = _unit(as_finite_array(d1, "d1"), "d1")
+    w = _unit(as_finite_array(d2, "d2"), "d2")
+    for name, arr in (("o1", a1), ("o2", a2), ("d1", u), ("d2", w)):
+        if arr.shape[-1:] != (3,):
+            raise ValueError(f"{name} must end in 3 coordinates, got shape {arr.shape}")
+    b = np.einsum("...i,...i->...", u, w)
+    den = 1.0 - b * b
+    if np.any(den < 1e-14):
+        raise ValueError("the two rays are parallel: no unique closest point")
+    r = a2 - a1
+    e = np.einsum("...i,...i->...", u, r)
+    f = np.einsum("...i,...i->...", w, r)
+    s = (e - b * f) / den
+    t = (b * e - f) / den
+    return a1 + s[..., None] * u, a2 + t[..., None] * w
 
 
 def triangulate_two_rays(o1, d1, o2, d2, *, return_gap: bool = False):
@@ -54,24 +95,7 @@ def triangulate_two_rays(o1, d1, o2, d2, *, return_gap: bool = False):
     ValueError
         Parallel rays (no unique closest point).
     """
-    a1 = as_finite_array(o1, "o1")
-    a2 = as_finite_array(o2, "o2")
-    u = _unit(as_finite_array(d1, "d1"), "d1")
-    w = _unit(as_finite_array(d2, "d2"), "d2")
-    for name, arr in (("o1", a1), ("o2", a2), ("d1", u), ("d2", w)):
-        if arr.shape[-1:] != (3,):
-            raise ValueError(f"{name} must end in 3 coordinates, got shape {arr.shape}")
-    b = np.einsum("...i,...i->...", u, w)
-    den = 1.0 - b * b
-    if np.any(den < 1e-14):
-        raise ValueError("the two rays are parallel: no unique closest point")
-    r = a2 - a1
-    e = np.einsum("...i,...i->...", u, r)
-    f = np.einsum("...i,...i->...", w, r)
-    s = (e - b * f) / den
-    t = (b * e - f) / den
-    p1 = a1 + s[..., None] * u
-    p2 = a2 + t[..., None] * w
+    p1, p2 = closest_points_two_rays(o1, d1, o2, d2)
     mid = 0.5 * (p1 + p2)
     if return_gap:
         return mid, np.linalg.norm(p1 - p2, axis=-1)

@@ -1,0 +1,417 @@
+"""Figures of Huang, Zhang & Feng: the schematics (sensors and epipolar plane, two-ray
+triangulation, the frames of eq. 4), Figs. 3–8, the error-budget checks and the threshold
+trade-off drawn by the notebook's widget. Every function returns its figure or axes."""
+
+from __future__ import annotations
+
+import matplotlib.pyplot as plt
+import numpy as np
+import pandas as pd
+
+from eotrack.geometry.epipolar import fundamental_from_poses
+from eotrack.geometry.triangulation import closest_points_two_rays
+from eotrack.plotting import get_ax, paper_marker
+from eotrack.validation import check_int
+
+from .scenario import PAIR_LABELS, PAIRS, Observation, Scenario, frame_chain
+from .trials import ThresholdStudy
+
+__all__ = [
+    "plot_distance_check",
+    "plot_epipolar_geometry",
+    "plot_fig3",
+    "plot_fig4",
+    "plot_fig5",
+    "plot_fig6",
+    "plot_fig8",
+    "plot_frame_chain",
+    "plot_gate_study",
+    "plot_threshold_tradeoff",
+    "plot_triangulation",
+    "render_maps",
+]
+
+EARTH_RADIUS_KM = 6378.137
+
+
+def _check_pair(scenario: Scenario, pair) -> tuple[int, int]:
+    a, b = (check_int(int(v), "pair", min_value=0) for v in pair)
+    if a == b or max(a, b) >= len(scenario.cameras):
+        raise ValueError(f"pair must be two different sensor indices < {len(scenario.cameras)}, "
+                         f"got {pair}")
+    return a, b
+
+
+def _draw_line(ax, line, size) -> None:
+    """Draw a u + b v + c = 0 across an image of ``size`` (w, h)."""
+    a, b, c = line
+    w, h = size
+    if abs(b) > abs(a):
+        u = np.array([-0.5, w - 0.5])
+        v = -(a * u + c) / b
+    else:
+        v = np.array([-0.5, h - 0.5])
+        u = -(b * v + c) / a
+    ax.plot(u, v, color="tab:purple", lw=1.5, label="epipolar line")
+
+
+def plot_epipolar_geometry(scenario: Scenario, pair=(0, 3), target: int = 4, *, fig=None):
+    """Schematic from the scenario: the sensors in orbit with their boresights, the baseline
+    O₁O₂, the epipolar plane through a target and the plane's trace (the epipolar line) in
+    each image. True scale, noise-free."""
+    a, b = _check_pair(scenario, pair)
+    j = check_int(target, "target", min_value=0)
+    fig = fig if fig is not None else plt.figure(figsize=(11, 5.2))
+    gs = fig.add_gridspec(2, 2, width_ratios=(1.5, 1))
+    ax = fig.add_subplot(gs[:, 0], projection="3d")
+    X = scenario.objects_km[j]
+    ca, cb = scenario.cameras[a], scenario.cameras[b]
+    u, v = np.mgrid[0:2 * np.pi:24j, 0:np.pi:12j]
+    ax.plot_wireframe(EARTH_RADIUS_KM * np.cos(u) * np.sin(v),
+                      EARTH_RADIUS_KM * np.sin(u) * np.sin(v), EARTH_RADIUS_KM * np.cos(v),
+                      color="0.7", lw=0.4)
+    for k, cam in enumerate(scenario.cameras):
+        hi = k in (a, b)
+        ax.scatter(*cam.c, color="tab:blue" if hi else "0.5", s=30 if hi else 12)
+        ax.text(*cam.c, f" O{k + 1}", fontsize=8, color="tab:blue" if hi else "0.4")
+        if hi:
+            ax.quiver(*cam.c, *(cam.R[2] * 0.6 * np.linalg.norm(X - cam.c)), color="tab:blue",
+                      lw=1, arrow_length_ratio=0.05)
+    ax.scatter(*scenario.objects_km.T, color="k", s=6)
+    ax.scatter(*X, color="tab:red", s=40)
+    ax.text(*X, f"  {scenario.names[j]}", color="tab:red", fontsize=9)
+    ax.plot(*np.stack([ca.c, cb.c]).T, color="tab:orange", lw=2, label="baseline O₁O₂")
+    for c in (ca.c, cb.c):
+        ax.plot(*np.stack([c, X]).T, color="tab:red", lw=0.8, ls="--")
+    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
+
+    ax.add_collection3d(Poly3DCollection([np.stack([ca.c, cb.c, X])], alpha=0.25,
+                                         facecolor="tab:purple", edgecolor="tab:purple"))
+    pts = np.vstack([scenario.objects_km, scenario.sat_km, np.zeros((1, 3))])
+    mid = 0.5 * (pts.max(0) + pts.min(0))
+    half = 0.5 * (pts.max(0) - pts.min(0)).max()
+    ax.set_xlim(mid[0] - half, mid[0] + half)
+    ax.set_ylim(mid[1] - half, mid[1] + half)
+    ax.set_zlim(mid[2] - half, mid[2] + half)
+    ax.set_xlabel("X (km)")
+    ax.set_ylabel("Y (km)")
+    ax.set_zlabel("Z (km)")
+    ax.set_title(f"sensors {a + 1} and {b + 1} (blue: boresights), epipolar plane "
+                 f"through {scenario.names[j]}", fontsize=9)
+    ax.legend(loc="upper left", fontsize=8)
+    F = fundamental_from_poses(ca.K, ca.R, ca.c, cb.K, cb.R, cb.c)
+    px = scenario.true_pixels()
+    p1 = np.append(px[a, j], 1.0)
+    p2 = np.append(px[b, j], 1.0)
+    for row, (k, p, line) in enumerate(((a, px[a, j], F.T @ p2), (b, px[b, j], F @ p1))):
+        axi = fig.add_subplot(gs[row, 1])
+        w, h = scenario.cameras[k].size
+        vis = scenario.visible[k]
+        axi.plot(*px[k, vis].T, "o", color="0.6", ms=3, label="other objects")
+        _draw_line(axi, line, (w, h))
+        axi.plot(*p, "o", color="tab:red", ms=6, label=scenario.names[j])
+        axi.set_xlim(-0.5, w - 0.5)
+        axi.set_ylim(h - 0.5, -0.5)
+        axi.set_aspect("equal")
+        axi.set_title(f"image {k + 1}: trace of the plane = epipolar line of "
+                      f"{scenario.names[j]}'s image in {b + 1 if k == a else a + 1}",
+                      fontsize=8)
+        axi.set_xlabel("u (px)")
+        axi.set_ylabel("v (px)")
+        if row == 0:
+            axi.legend(fontsize=7, loc="lower left")
+    fig.suptitle("Epipolar geometry of two star sensors (true scale, noise-free)")
+    fig.tight_layout()
+    return fig
+
+
+def plot_triangulation(scenario: Scenario, obs: Observation, pair=(0, 3), target: int = 4, *,
+                       ax=None):
+    """Two-ray triangulation of ``target`` from a noisy draw, in a local frame centred on the
+    truth (km): the two lines of sight, their closest-approach segment and its midpoint."""
+    a, b = _check_pair(scenario, pair)
+    j = check_int(target, "target", min_value=0)
+    idx = []
+    for k in (a, b):
+        hit = np.flatnonzero(obs.labels[k] == j)
+        if len(hit) == 0:
+            raise ValueError(f"{scenario.names[j]} is not seen by sensor {k + 1}")
+        idx.append(hit[0])
+    ca, cb = obs.cameras[a], obs.cameras[b]
+    d1 = ca.rays(obs.points[a][idx[0]][None])[0]
+    d2 = cb.rays(obs.points[b][idx[1]][None])[0]
+    q1, q2 = closest_points_two_rays(ca.c, d1, cb.c, d2)
+    truth = scenario.objects_km[j]
+    los = d1 + d2
+    e1 = los / np.linalg.norm(los)
+    e2 = np.cross(e1, q2 - q1)
+    e2 = e2 / np.linalg.norm(e2) if np.linalg.norm(e2) > 0 else np.cross(e1, [0, 0, 1.0])
+    e3 = np.cross(e1, e2)
+    B = np.stack([e1, e2, e3])
+
+    def loc(p):
+        return (np.asarray(p) - truth) @ B.T
+
+    if ax is None:
+        fig = plt.figure(figsize=(7, 5.2))
+        ax = fig.add_subplot(projection="3d")
+    mid = 0.5 * (q1 + q2)
+    span = max(3 * np.linalg.norm(mid - truth), 50.0)
+    for q, d, c, lab in ((q1, d1, "tab:blue", f"line of sight of sensor {a + 1}"),
+                         (q2, d2, "tab:green", f"line of sight of sensor {b + 1}")):
+        s = np.linspace(-span, span, 2)
+        ax.plot(*loc(q + s[:, None] * d).T, color=c, lw=1.5, label=lab)
+    ax.plot(*loc(np.stack([q1, q2])).T, color="tab:red", lw=2.5,
+            label=f"closest approach, {np.linalg.norm(q2 - q1):.2f} km")
+    ax.scatter(*loc(mid), color="tab:red", marker="x", s=60,
+               label=f"estimate (midpoint), error {np.linalg.norm(mid - truth):.1f} km")
+    ax.scatter(0, 0, 0, facecolors="none", edgecolors="k", s=60, label="truth")
+    ax.set_xlabel("along the lines of sight (km)")
+    ax.set_ylabel("across (km)")
+    ax.set_zlabel("across (km)")
+    ax.set_title(f"Two-ray triangulation of {scenario.names[j]} (one noisy draw)", fontsize=10)
+    ax.legend(fontsize=7, loc="upper left")
+    return ax
+
+
+def plot_frame_chain(scenario: Scenario, k: int = 0, *, fig=None):
+    """The chain of frames of eq. (4) for sensor ``k``: J2000 → orbit (LVLH) → body → sensor,
+    each frame's axes drawn in J2000 (red x, green y, blue z)."""
+    ch = frame_chain(scenario, k)
+    fig = fig if fig is not None else plt.figure(figsize=(12, 3.6))
+    y, p, r = np.degrees(ch.yaw_pitch_roll_rad)
+    panels = [("J2000", np.eye(3), "reference (ECI)"),
+              ("orbit (LVLH)", ch.orbit, "from r, v: z nadir, y −h"),
+              ("body", ch.body, f"r(Y, P, R) of eq. (4)\nY {y:.1f}°, P {p:.1f}°, R {r:.1f}°"),
+              ("sensor", ch.sensor, "mounting M (assumed)\nz = boresight")]
+    rhat = ch.position_km / np.linalg.norm(ch.position_km)
+    for i, (name, R, sub) in enumerate(panels):
+        ax = fig.add_subplot(1, 4, i + 1, projection="3d")
+        for e in np.eye(3):
+            ax.plot(*np.stack([np.zeros(3), e]).T, color="0.8", lw=1)
+        for row, col, lab in zip(R, ("tab:red", "tab:green", "tab:blue"), "xyz"):
+            ax.quiver(0, 0, 0, *row, color=col, lw=2, arrow_length_ratio=0.15)
+            ax.text(*(1.15 * row), lab, color=col, fontsize=9)
+        if i == 1:
+            ax.quiver(0, 0, 0, *rhat, color="k", lw=1, ls="--", arrow_length_ratio=0.1)
+            ax.text(*(1.1 * rhat), "r", fontsize=8)
+        ax.set_xlim(-1, 1)
+        ax.set_ylim(-1, 1)
+        ax.set_zlim(-1, 1)
+        ax.set_xticks([])
+        ax.set_yticks([])
+        ax.set_zticks([])
+        ax.set_title(f"{name}\n{sub}", fontsize=9)
+        if i < 3:
+            fig.text(0.25 * (i + 1) - 0.01, 0.5, "→", fontsize=20, ha="center", va="center")
+    fig.suptitle(f"Frames of sensor {k + 1}: R_sensor = M · r(Y, P, R) · R_orbit "
+                 "(grey: J2000 axes)", fontsize=10)
+    return fig
+
+
+def plot_threshold_tradeoff(study: ThresholdStudy, threshold: float, *, fig=None):
+    """The widget's figure: missed and false associations versus L with the error-budget (χ²)
+    gate as the recommendation (left), and the distances of accepted pairs (right)."""
+    fig = fig if fig is not None else plt.figure(figsize=(10, 3.6), dpi=80)
+    ax, ax2 = fig.subplots(1, 2)
+    th, r = study.curves()
+    now = study.rates(float(threshold))
+    ax.plot(th, 100 * r["missed"], ":", label="missed (of true pairs)")
+    ax.plot(th, 100 * r["false"], "--", label="false (per true pair)")
+    ax.plot(th, 100 * r["total"], "-", lw=2, label="total error")
+    g = study.gate_px
+    ax.axvline(g, color="tab:green", lw=4, alpha=0.6,
+               label=f"recommended: χ²₁ 99 % gate, {g:.1f} px")
+    ax.axvline(threshold, color="k", lw=1)
+    ax.axvspan(8, 12, color="0.9", zorder=0, label="paper: 8–12 px")
+    ax.set_xlabel("threshold L (px)")
+    ax.set_ylabel("rate (%)")
+    ax.set_ylim(0, 100)
+    ax.legend(fontsize=7, loc="upper right")
+    edges, hc, hf = study.histograms()
+    ax2.stairs(hc, edges, fill=True, alpha=0.6, label="correct pairs")
+    ax2.stairs(hf, edges, fill=True, alpha=0.6, color="tab:red", label="false pairs")
+    ax2.axvline(threshold, color="k", lw=1, label=f"L = {threshold:g} px")
+    ax2.axvline(g, color="tab:green", lw=2, label="χ² gate")
+    ax2.set_xlabel("distance to the epipolar line (px)")
+    ax2.set_ylabel("accepted pairs")
+    ax2.legend(fontsize=7)
+    e = study.errors
+    fig.suptitle(f"L = {threshold:g} px: missed {100 * float(now['missed']):.1f} %, false "
+                 f"{100 * float(now['false']):.1f} %, total {100 * float(now['total']):.1f} % "
+                 f"per true pair (attitude ±{e.attitude_arcmin:g}′, {e.n_false} false "
+                 f"targets/map; {study.n_draws} draws, reduced from 300)", fontsize=9)
+    fig.subplots_adjust(left=0.06, right=0.98, bottom=0.14, top=0.88, wspace=0.2)
+    return fig
+
+
+# --------------------------------------------------------------------------- figures
+def render_maps(scenario: Scenario, obs: Observation, rng: np.random.Generator, *,
+                target_mag: float = 11.0) -> list[np.ndarray]:
+    """Star-map images (e⁻) for the four sensors: catalogue + synthetic stars to Mv 13,
+    targets and false targets at their centroids."""
+    from eotrack.imaging.starfield import (
+        StarFieldConfig,
+        catalogue_stars_in_view,
+        render_star_image,
+    )
+
+    cfg = StarFieldConfig(limit_mag=scenario.sensor.limit_mag)
+    jyear = 2019.25
+    images = []
+    for k, cam in enumerate(scenario.cameras):
+        stars = catalogue_stars_in_view(cam, rng, config=cfg, jyear=jyear)
+        lab = obs.labels[k]
+        mags = np.where(lab >= 0, target_mag, rng.uniform(11.5, 12.5, len(lab)))
+        xy = np.concatenate([stars.xy, obs.points[k]])
+        mag = np.concatenate([stars.mag, mags])
+        images.append(render_star_image((cam.size[1], cam.size[0]), xy, mag, rng, config=cfg))
+    return images
+
+
+def plot_fig3(scenario: Scenario, obs: Observation, images: list[np.ndarray], *, fig=None):
+    """Fig. 3: the four star maps, GEO objects labelled, false targets boxed."""
+    fig = fig if fig is not None else plt.figure(figsize=(9, 9))
+    axes = fig.subplots(2, 2)
+    for k, ax in enumerate(axes.ravel()):
+        img = images[k]
+        lo, hi = np.percentile(img, [5, 99.7])
+        ax.imshow(np.clip((img - lo) / (hi - lo), 0, 1) ** 0.5, cmap="gray", origin="upper")
+        for xy, lab in zip(obs.points[k], obs.labels[k]):
+            if lab >= 0:
+                ax.add_patch(plt.Circle(xy, 9, fill=False, ec="tab:orange", lw=1.2))
+                right = xy[0] < 0.8 * img.shape[1]
+                ax.annotate(scenario.names[lab], xy, xytext=(8 if right else -8, -8),
+                            textcoords="offset points", color="tab:orange", fontsize=8,
+                            ha="left" if right else "right")
+            else:
+                ax.add_patch(plt.Rectangle(xy - 9, 18, 18, fill=False, ec="tab:red", lw=1.2))
+        ax.set_title(f"Star map {k + 1}")
+        ax.set_xticks([])
+        ax.set_yticks([])
+        ax.grid(False)
+    fig.suptitle("Fig. 3 — star maps with GEO objects (circled) and false targets (boxed)")
+    fig.tight_layout()
+    return fig
+
+
+def plot_fig4(scenario: Scenario, obs: Observation, matches, *, fig=None):
+    """Fig. 4(a)–(f): the six map pairs side by side, lines between associated points
+    (green: correct, red: false association)."""
+    fig = fig if fig is not None else plt.figure(figsize=(10, 6.6))
+    axes = fig.subplots(3, 2)
+    w, h = scenario.cameras[0].size
+    for ax, (a, b), lab in zip(axes.ravel(), PAIRS, PAIR_LABELS):
+        for k, off in ((a, 0.0), (b, w + 20.0)):
+            p, lb = obs.points[k], obs.labels[k]
+            ax.add_patch(plt.Rectangle((off - 0.5, -0.5), w, h, fill=False, ec="0.5"))
+            ax.plot(p[lb >= 0, 0] + off, p[lb >= 0, 1], "o", ms=4, color="k")
+            ax.plot(p[lb < 0, 0] + off, p[lb < 0, 1], "s", ms=5, mfc="none", color="tab:red")
+        pairs = matches[(a, b)][0]
+        la, lb2 = obs.labels[a], obs.labels[b]
+        for i, j in pairs:
+            ok = la[i] == lb2[j] and la[i] >= 0
+            ax.plot([obs.points[a][i, 0], obs.points[b][j, 0] + w + 20],
+                    [obs.points[a][i, 1], obs.points[b][j, 1]],
+                    color="tab:green" if ok else "tab:red", lw=1)
+        ax.set_xlim(-10, 2 * w + 30)
+        ax.set_ylim(h + 10, -10)
+        ax.set_aspect("equal")
+        ax.set_xticks([])
+        ax.set_yticks([])
+        ax.grid(False)
+        ax.set_title(f"Fig. {lab[:4]} — map {a + 1} | map {b + 1}", fontsize=9)
+    fig.tight_layout()
+    return fig
+
+
+def plot_fig5(thresholds, accuracy, false_rate, miss_rate, error_rate, *, paper=None, ax=None):
+    """Fig. 5: association outcome rates versus threshold."""
+    ax = get_ax(ax, figsize=(6.4, 4.0))
+    ax.plot(thresholds, 100 * accuracy, "-", label="correct (of true pairs)")
+    ax.plot(thresholds, 100 * error_rate, "-", lw=2, label="total error (missed + false)")
+    ax.plot(thresholds, 100 * false_rate, "--", label="false (of associated pairs)")
+    ax.plot(thresholds, 100 * miss_rate, ":", label="missed (of true pairs)")
+    if paper is not None:
+        lo, hi = paper["best_threshold_px"]
+        ax.axvspan(lo, hi, color="0.85", zorder=0, label="paper: best L 8–12 px")
+        paper_marker(ax, [np.mean([lo, hi])], [100 * paper["accuracy_at_best"]],
+                     label="paper: ≈90 % correct")
+    ax.set_xlabel("threshold L (px)")
+    ax.set_ylabel("rate (%)")
+    ax.set_title("Fig. 5 — association outcome versus threshold")
+    ax.legend(fontsize=8)
+    return ax
+
+
+def plot_fig6(running: dict, analytic: dict, paper: dict | None = None, *, ax=None,
+              title: str = "Fig. 6 — Monte Carlo bound on false association"):
+    """Fig. 6: running mean of the bound versus number of simulations, analytic lines."""
+    ax = get_ax(ax, figsize=(6.4, 4.0))
+    for i, (L, curve) in enumerate(running.items()):
+        col = f"C{i}"
+        ax.plot(np.arange(1, len(curve) + 1), 100 * curve, color=col, label=f"L = {L:g} px")
+        ax.axhline(100 * analytic[L], color=col, ls="--", lw=0.8)
+    if paper is not None:
+        n = paper["n_simulations"]
+        paper_marker(ax, [n] * len(paper["max_false_rate"]),
+                     100 * np.asarray(paper["max_false_rate"]))
+    ax.set_xlabel("number of simulations")
+    ax.set_ylabel("max. false-association rate (%)")
+    ax.set_title(title)
+    ax.legend(fontsize=8, ncol=2)
+    return ax
+
+
+def plot_fig8(scenario: Scenario, estimates: dict[str, dict], *, ax=None):
+    """Fig. 8: pair estimates, combined estimate and truth of GEO1 and GEO5 (J2000, km)."""
+    if ax is None:
+        fig = plt.figure(figsize=(6.4, 5.0))
+        ax = fig.add_subplot(projection="3d")
+    for i, (name, e) in enumerate(estimates.items()):
+        col = f"C{i}"
+        if e["pairs"]:
+            P = np.stack(list(e["pairs"].values()))
+            ax.scatter(*P.T, color=col, marker="^", s=40, alpha=0.7,
+                       label=f"{name} pair estimates ({len(P)})")
+        ax.scatter(*e["combined"], color=col, marker="x", s=70, label=f"{name} combined")
+        ax.scatter(*e["truth"], color=col, marker="o", s=50, facecolors="none",
+                   label=f"{name} truth")
+        ax.plot(*np.stack([e["truth"], e["combined"]]).T, color=col, lw=1, ls=":")
+    ax.set_xlabel("X (km)")
+    ax.set_ylabel("Y (km)")
+    ax.set_zlabel("Z (km)")
+    ax.set_title("Fig. 8 — GEO1 and GEO5 in J2000 (dotted: error)")
+    ax.legend(fontsize=7, loc="upper left")
+    return ax
+
+
+
+
+def plot_gate_study(df: pd.DataFrame, *, ax=None):
+    """Best threshold and error-budget gate versus attitude error."""
+    ax = get_ax(ax, figsize=(5.5, 3.6))
+    gate_col = next(c for c in df.columns if c.startswith("gate"))
+    ax.plot(df["attitude (′)"], df["best L (px)"], "o-", label="best L (min. total error)")
+    ax.plot(df["attitude (′)"], df[gate_col], "s--", label=gate_col)
+    ax.axhspan(8, 12, color="0.85", zorder=0, label="paper: 8–12 px")
+    ax.set_xlabel("attitude error bound per angle (arcmin)")
+    ax.set_ylabel("threshold (px)")
+    ax.legend(fontsize=8)
+    return ax
+
+
+def plot_distance_check(true_d: np.ndarray, sigma_px: float, *, ax=None):
+    """Distances of true pairs (Monte Carlo) against the half-normal of the predicted σ."""
+    ax = get_ax(ax, figsize=(5.5, 3.6))
+    d = np.asarray(true_d, float)
+    ax.hist(d, bins=np.linspace(0, max(4 * sigma_px, d.max()), 40), density=True, alpha=0.6,
+            label=f"true pairs, Monte Carlo ({len(d)})")
+    x = np.linspace(0, 4 * sigma_px, 200)
+    ax.plot(x, 2 * np.exp(-0.5 * (x / sigma_px) ** 2) / (np.sqrt(2 * np.pi) * sigma_px),
+            label=f"half-normal, predicted σ = {sigma_px:.2f} px")
+    ax.set_xlabel("distance to the epipolar line (px)")
+    ax.set_ylabel("density")
+    ax.legend(fontsize=8)
+    return ax
+
