@@ -100,7 +100,13 @@ def AngleConstrainedLogicInitiator(n: int = 3, m: int = 4, *, min_angle_deg: flo
 
 
 class _LogicRun:
-    """One pass of the logic method over the frames (internal)."""
+    """One pass of the logic method over the frames (internal).
+
+    Tentative tracks are rows of arrays: ``start`` (frame of the head), ``hits`` (global
+    detection id per window slot, −1 = none), ``count``, ``last``/``prev`` (slots of the last two
+    hits) and ``cost`` (summed gate distances), all updated in place, so each frame costs a few
+    passes over the rows.
+    """
 
     def __init__(self, cfg: LogicInitiator, xys: list[np.ndarray], times: np.ndarray):
         self.cfg = cfg
@@ -112,23 +118,18 @@ class _LogicRun:
         self.xy_flat = np.concatenate(xys) if self.off[-1] else np.zeros((0, 2))
         self.handoff = TrackHandOff(cfg.handoff_gate_px)
         m = cfg.m
-        # tentative tracks: global detection ids of hits per window slot (-1 = none)
         self.start = np.zeros(0, dtype=np.int64)
         self.hits = np.zeros((0, m), dtype=np.int64)
+        self.count = np.zeros(0, dtype=np.int64)
+        self.last = np.zeros(0, dtype=np.int64)
+        self.prev = np.zeros(0, dtype=np.int64)
         self.cost = np.zeros(0)
         self.frames = [Frame(float(t), x) for t, x in zip(times, xys)]
 
+    _FIELDS = ("start", "hits", "count", "last", "prev", "cost")
+
     def _avail_view(self, f: int) -> np.ndarray:
         return self.avail[self.off[f]:self.off[f + 1]]
-
-    def _last_two(self, rows: np.ndarray):
-        """Slots of the last and previous hits of tentative tracks ``rows`` (≥ 2 hits)."""
-        h = self.hits[rows] >= 0
-        m = self.cfg.m
-        idx = np.arange(m)
-        last = np.max(np.where(h, idx, -1), axis=1)
-        prev = np.max(np.where(h & (idx < last[:, None]), idx, -1), axis=1)
-        return last, prev
 
     def run(self, perms: list[np.ndarray]) -> list[Track]:
         for k in range(len(self.xys)):
@@ -139,24 +140,20 @@ class _LogicRun:
         cfg = self.cfg
         m = cfg.m
         xy_k = self.xys[k]
+        # (the hand-off claims detections of frame k only, which no tentative track holds yet;
+        # tracks sharing a detection with a confirmed one were deleted when it was confirmed)
         self.handoff.claim(k, self.times[k], xy_k, self._avail_view(k))
-        # tentative tracks whose window is over, or that lost a detection to a confirmed track
-        keep = self.start > k - m
-        if len(self.start):
-            h = self.hits
-            keep &= np.all((h < 0) | self.avail[np.maximum(h, 0)], axis=1)
-        self._select(keep)
+        self._select(self.start > k - m)
         slot_k = k - self.start
         ids_k = self.off[k] + np.flatnonzero(self._avail_view(k))
         pk = self.xy_flat[ids_k]
         tk = self.times[k]
-        count = np.sum(self.hits >= 0, axis=1)
-        new_start, new_hits, new_cost = [], [], []
+        new = []
         if len(ids_k) and len(self.start):
             # --- extension of tracks with >= 2 points: CV prediction + nearest neighbour
-            ext = np.flatnonzero(count >= 2)
+            ext = np.flatnonzero(self.count >= 2)
             if len(ext):
-                last, prev = self._last_two(ext)
+                last, prev = self.last[ext], self.prev[ext]
                 g_last = self.hits[ext, last]
                 g_prev = self.hits[ext, prev]
                 t_last = self.times[self.start[ext] + last]
@@ -164,12 +161,12 @@ class _LogicRun:
                 p_last = self.xy_flat[g_last]
                 p_prev = self.xy_flat[g_prev]
                 vel = (p_last - p_prev) / (t_last - t_prev)[:, None]
-                dt = (tk - t_last)[:, None]
-                pred = p_last + vel * dt
+                dt = tk - t_last
+                pred = p_last + vel * dt[:, None]
                 # every detection inside a prediction gate (spatial grid, no tracks × detections
                 # matrix), then the segment's velocity gate and the angle test on those pairs
                 ti, dj, d2 = PointGrid(pk, cfg.gate_px).query(pred)
-                seg = np.hypot(pk[dj, 0] - p_last[ti, 0], pk[dj, 1] - p_last[ti, 1]) / dt[ti, 0]
+                seg = np.hypot(pk[dj, 0] - p_last[ti, 0], pk[dj, 1] - p_last[ti, 1]) / dt[ti]
                 ok = (seg >= cfg.v_min) & (seg <= cfg.v_max)
                 if cfg.min_angle_deg is not None:
                     a = p_prev[ti] - p_last[ti]
@@ -186,67 +183,82 @@ class _LogicRun:
                 rows = ext[ti[first]]
                 self.hits[rows, slot_k[rows]] = ids_k[dj[first]]
                 self.cost[rows] += d[first]
+                self.prev[rows] = self.last[rows]
+                self.last[rows] = slot_k[rows]
+                self.count[rows] += 1
             # --- heads: pair with every detection in the velocity gate
-            heads = np.flatnonzero(count == 1)
+            # (a head whose window ends too soon to reach n with this pair is skipped)
+            heads = np.flatnonzero((self.count == 1)
+                                   & (self.start + m - 1 - k + 2 >= cfg.n))
             if len(heads):
-                s0 = np.max(np.where(self.hits[heads] >= 0, np.arange(m), -1), axis=1)
-                g0 = self.hits[heads, s0]
-                p0 = self.xy_flat[g0]
+                s0 = self.last[heads]
+                p0 = self.xy_flat[self.hits[heads, s0]]
                 dt = tk - self.times[self.start[heads] + s0]
-                dd = pk[None, :, :] - p0[:, None, :]
-                v = np.hypot(dd[..., 0], dd[..., 1]) / dt[:, None]
-                hi, di = np.nonzero((v >= cfg.v_min) & (v <= cfg.v_max))
+                hi, di = self._gated(p0, pk, dt)
                 if len(hi):
-                    nh = self.hits[heads[hi]].copy()
-                    nh[np.arange(len(hi)), slot_k[heads[hi]]] = ids_k[di]
-                    new_start.append(self.start[heads[hi]])
-                    new_hits.append(nh)
-                    new_cost.append(np.zeros(len(hi)))
+                    rows = heads[hi]
+                    nh = self.hits[rows]
+                    sk = slot_k[rows]
+                    nh[np.arange(len(hi)), sk] = ids_k[di]
+                    new.append((self.start[rows], nh, np.full(len(hi), 2), sk, s0[hi],
+                                np.zeros(len(hi))))
         # --- new heads
         if len(ids_k):
             nh = np.full((len(ids_k), m), -1, dtype=np.int64)
             nh[:, 0] = ids_k
-            new_start.append(np.full(len(ids_k), k, dtype=np.int64))
-            new_hits.append(nh)
-            new_cost.append(np.zeros(len(ids_k)))
-        if new_start:
-            self.start = np.concatenate([self.start, *new_start])
-            self.hits = np.concatenate([self.hits, *new_hits])
-            self.cost = np.concatenate([self.cost, *new_cost])
+            z = np.zeros(len(ids_k), dtype=np.int64)
+            new.append((np.full(len(ids_k), k, dtype=np.int64), nh, z + 1, z, z,
+                        np.zeros(len(ids_k))))
+        if new:
+            for i, name in enumerate(self._FIELDS):
+                setattr(self, name, np.concatenate([getattr(self, name)] + [n[i] for n in new]))
         self._confirm(k)
         # drop tracks that can no longer reach n within their window
-        count = np.sum(self.hits >= 0, axis=1)
-        remaining = self.start + m - 1 - k
-        self._select(count + remaining >= cfg.n)
+        self._select(self.count + (self.start + m - 1 - k) >= cfg.n)
+
+    def _gated(self, p0: np.ndarray, pk: np.ndarray, dt: np.ndarray):
+        """Pairs (head, detection) inside the velocity gate, head-major (one broadcast)."""
+        cfg = self.cfg
+        dx = pk[None, :, 0] - p0[:, None, 0]
+        dy = pk[None, :, 1] - p0[:, None, 1]
+        d2 = dx * dx
+        d2 += dy * dy
+        dt2 = (dt * dt)[:, None]
+        return np.nonzero((d2 >= cfg.v_min**2 * dt2) & (d2 <= cfg.v_max**2 * dt2))
 
     def _select(self, keep: np.ndarray) -> None:
-        self.start = self.start[keep]
-        self.hits = self.hits[keep]
-        self.cost = self.cost[keep]
+        if np.all(keep):
+            return
+        for name in self._FIELDS:
+            setattr(self, name, getattr(self, name)[keep])
 
     def _confirm(self, k: int) -> None:
-        count = np.sum(self.hits >= 0, axis=1)
-        ready = np.flatnonzero(count >= self.cfg.n)
+        ready = np.flatnonzero(self.count >= self.cfg.n)
         if len(ready) == 0:
             return
-        first = np.max(np.where(self.hits[ready] >= 0, self.hits[ready], -1), axis=1)
+        first = np.max(self.hits[ready], axis=1)
         order = ready[np.lexsort((self.xy_flat[first, 1], self.xy_flat[first, 0],
-                                  self.cost[ready], -count[ready]))]
+                                  self.cost[ready], -self.count[ready]))]
         # best first, each detection in one track (vectorised greedy); rows holding a
         # detection already claimed cannot be confirmed
         h = self.hits[order]
         free = np.all((h < 0) | self.avail[np.maximum(h, 0)], axis=1)
         order, h = order[free], h[free]
         win = greedy_disjoint(h, np.arange(len(order)), len(self.avail))
+        if len(win) == 0:
+            return
+        rows = order[win]
+        g = self.hits[rows]
+        ok = g >= 0
+        self.avail[g[ok]] = False
+        fr = np.searchsorted(self.off, np.maximum(g, 0), side="right") - 1
+        det = np.where(ok, g - self.off[fr], -1)
+        label = self.cfg.label
+        for f_row, d_row in zip(fr.tolist(), det.tolist()):
+            hits = [(f, d) for f, d in zip(f_row, d_row) if d >= 0]
+            self.handoff.confirm(hits, k, self.frames, info={"method": label})
         done = np.zeros(len(self.start), dtype=bool)
-        for r in order[win]:
-            g = self.hits[r][self.hits[r] >= 0]
-            self.avail[g] = False
-            fr = np.searchsorted(self.off, g, side="right") - 1
-            hits = [(int(f), int(gg - self.off[f])) for f, gg in zip(fr, g)]
-            self.handoff.confirm(hits, k, self.frames,
-                                 info={"method": self.cfg.label})
-            done[r] = True
+        done[rows] = True
         h = self.hits
         clash = np.any((h >= 0) & ~self.avail[np.maximum(h, 0)], axis=1)
         self._select(~(done | clash))
