@@ -1,0 +1,313 @@
+"""Figures of the WRANSAC notebook and report: one function per figure, ``ax=None`` → new axes."""
+
+from __future__ import annotations
+
+import itertools
+
+import matplotlib.pyplot as plt
+import numpy as np
+import pandas as pd
+from matplotlib.patches import FancyArrowPatch, FancyBboxPatch
+
+from eotrack.plotting import get_ax, paper_marker
+from eotrack.robust import (
+    min_samples_real,
+    msac_loss,
+    sinusoidal_loss,
+    sinusoidal_loss_as_printed,
+    zero_one_loss,
+)
+from eotrack.validation import check_choice
+
+from .scenario import COORDS, Scenario
+from .trials import PredictionResults
+
+__all__ = [
+    "METHOD_LABELS",
+    "plot_budget",
+    "plot_eclipse_season",
+    "plot_error_distribution",
+    "plot_flowchart",
+    "plot_generalisation",
+    "plot_inlier_histograms",
+    "plot_leverage",
+    "plot_losses",
+    "plot_min_samples",
+    "plot_prediction",
+    "plot_pull",
+    "plot_ratio_table",
+    "plot_threshold_sensitivity",
+]
+
+METHOD_LABELS = {
+    "sin": "sin (free-ω sinusoid)", "lsq": "LSQ", "ransac": "RANSAC",
+    "wransac": "WRANSAC", "wransac_hypothesis": "WRANSAC (hypothesis weights)",
+    "wransac_refit": "WRANSAC (refit weights, 1 step)",
+    "wransac_iterated": "WRANSAC (iterated weights)", "ideal": "ideal: OLS on true inliers",
+    "msac": "MSAC", "huber": "Huber from LSQ", "soft_l1": "soft-L1 from LSQ",
+    "huber_ransac": "Huber from RANSAC", "cauchy_ransac": "Cauchy from RANSAC",
+}
+
+
+def plot_min_samples(confidence: float = 0.99, sample_sizes=(4, 7, 8), *, paper: dict | None = None,
+                     ax: plt.Axes | None = None) -> plt.Axes:
+    """Fig. 1: U versus outlier ratio ε (eq. 2), log scale."""
+    ax = get_ax(ax)
+    eps = np.linspace(0.0, 0.6, 121)
+    for m in sample_sizes:
+        ax.plot(eps, [min_samples_real(confidence, e, m) for e in eps], label=f"m = {m}")
+    if paper is not None:
+        paper_marker(ax, paper["check_outlier_ratios"], paper["check_values_m4"],
+                     label="paper check values (m = 4)")
+    ax.set_yscale("log")
+    ax.set(xlabel="outlier ratio ε", ylabel="minimum number of samples U",
+           title=f"Fig. 1 — U versus ε (P = {confidence})")
+    ax.legend()
+    return ax
+
+
+def plot_losses(t: float = 1.0, *, ax: plt.Axes | None = None) -> plt.Axes:
+    """Fig. 2: L_R, L_M (linear and squared), L_s corrected and as printed."""
+    ax = get_ax(ax)
+    e = np.linspace(-1.5 * t, 1.5 * t, 601)
+    ax.plot(e, zero_one_loss(e, t), label="$L_R$ (0-1), eq. 4")
+    ax.plot(e, msac_loss(e, t), label="$L_M$ = |e|/t, eq. 5")
+    ax.plot(e, msac_loss(e, t, "squared"), ls=":", label="usual MSAC e²/t²")
+    ax.plot(e, sinusoidal_loss(e, t), lw=2.2, label="$L_s$ corrected: ½ − ½cos(πe/t)")
+    ax.plot(e, sinusoidal_loss_as_printed(e, t), ls="--", label="$L_s$ as printed (erratum)")
+    ax.set(xlabel="error e / t", ylabel="loss", title="Fig. 2 — loss functions")
+    ax.legend(fontsize=8, loc="lower left")
+    return ax
+
+
+def plot_flowchart(*, ax: plt.Axes | None = None) -> plt.Axes:
+    """Fig. 3: the WRANSAC flowchart, drawn from the steps of :func:`eotrack.robust.ransac`."""
+    ax = get_ax(ax, figsize=(6.5, 7.2))
+    steps = [
+        ("start", "observations (t_i, y_i), threshold t = 3σ, budget U (eq. 2)"),
+        ("box", "draw a minimal sample of m = 4 points"),
+        ("box", "solve y = a sin ωt + b cos ωt + c + d t exactly"),
+        ("box", "cost J = Σ L_s(e_i) over ALL data (eq. 3, eq. 6 corrected)"),
+        ("diamond", "J < best J so far?"),
+        ("box", "keep: best inlier set {|e_i| ≤ t}, its residuals"),
+        ("diamond", "U samples drawn?"),
+        ("box", "weights w_i = 1 − L_s(e_i) on the best inlier set"),
+        ("box", "weighted refit: θ = argmin Σ w_i (y_i − a_iᵀθ)²"),
+        ("start", "predict y(t) for 15 / 30 / 72 min"),
+    ]
+    ys = np.linspace(0.95, 0.05, len(steps))
+    for (kind, text), y in zip(steps, ys, strict=True):
+        style = {"start": "round,pad=0.02", "box": "square,pad=0.02",
+                 "diamond": "round4,pad=0.02"}[kind]
+        color = {"start": "#dbe9f6", "box": "#f2f2f2", "diamond": "#fde9c9"}[kind]
+        ax.add_patch(FancyBboxPatch((0.12, y - 0.03), 0.76, 0.06, boxstyle=style, fc=color,
+                                    ec="k", lw=0.8, transform=ax.transAxes))
+        ax.text(0.5, y, text, ha="center", va="center", fontsize=8.5, transform=ax.transAxes)
+    for y0, y1 in itertools.pairwise(ys):
+        ax.add_patch(FancyArrowPatch((0.5, y0 - 0.03), (0.5, y1 + 0.03), arrowstyle="-|>",
+                                     mutation_scale=10, transform=ax.transAxes, color="k"))
+    # "no" branches: J not better → skip the update; not all U drawn → back to sampling
+    ax.add_patch(FancyArrowPatch((0.88, ys[4]), (0.95, ys[6]), connectionstyle="arc3,rad=-0.4",
+                                 arrowstyle="-|>", mutation_scale=10, transform=ax.transAxes))
+    ax.text(0.965, (ys[4] + ys[6]) / 2, "no", fontsize=8, transform=ax.transAxes)
+    ax.add_patch(FancyArrowPatch((0.12, ys[6]), (0.12, ys[1]), connectionstyle="arc3,rad=-0.5",
+                                 arrowstyle="-|>", mutation_scale=10, transform=ax.transAxes))
+    ax.text(0.0, (ys[1] + ys[6]) / 2, "no:\nnext\nsample", fontsize=8, transform=ax.transAxes)
+    ax.text(0.52, (ys[4] + ys[5]) / 2, "yes", fontsize=8, transform=ax.transAxes)
+    ax.text(0.52, (ys[6] + ys[7]) / 2, "yes", fontsize=8, transform=ax.transAxes)
+    ax.set_axis_off()
+    ax.set_title("Fig. 3 — WRANSAC flowchart (steps of eotrack.robust.ransac)")
+    return ax
+
+
+def plot_inlier_histograms(res: PredictionResults, *, axes=None):
+    """Figs. 4–5: histograms of the WRANSAC inliers' loss values and weights (all runs)."""
+    if axes is None:
+        _, axes = plt.subplots(1, 2, figsize=(9, 3.4))
+    loss = np.concatenate(res.inlier_loss)
+    w = np.concatenate(res.inlier_weight)
+    bins = np.linspace(0, 1, 21)
+    axes[0].hist(loss, bins=bins, color="C1", edgecolor="k")
+    axes[0].set(xlabel="$L_s(e)$ of inliers", ylabel="count",
+                title="Fig. 4 — inlier cost values")
+    axes[1].hist(w, bins=bins, color="C2", edgecolor="k")
+    axes[1].set(xlabel="weight w = 1 − $L_s$", ylabel="count", title="Fig. 5 — inlier weights")
+    return axes
+
+
+def plot_prediction(res: PredictionResults, run: int = 0, coord: str = "dec",
+                    methods: tuple[str, ...] = ("sin", "lsq", "ransac", "wransac", "ideal"), *,
+                    ax: plt.Axes | None = None) -> plt.Axes:
+    """Fig. 6: observations, the true track and each method's 72-min prediction for one run."""
+    ax = get_ax(ax, figsize=(7.5, 4))
+    ci = COORDS.index(check_choice(coord, "coord", COORDS))
+    sc = res.scenario
+    tmin = (np.r_[sc.t_obs_s, sc.t_pred_s] - sc.t_obs_s[-1]) / 60.0
+    n = len(sc.t_obs_s)
+    if run == 0:
+        ax.plot(tmin[:n], res.first_obs[ci], ".", color="0.5", ms=4, label="observations (run 0)")
+    ax.plot(tmin, np.r_[sc.truth_obs[ci], sc.truth_pred[ci]], "k-", lw=1,
+            label="true track (SGP4)")
+    for m in methods:
+        if m in res.methods:
+            ax.plot(tmin[n:], sc.truth_pred[ci] + res.errors[run, res.methods.index(m), ci],
+                    label=METHOD_LABELS.get(m, m))
+    ax.axvspan(0, tmin[-1], color="0.9", zorder=-1)
+    lo, hi = np.percentile(np.r_[sc.truth_obs[ci], sc.truth_pred[ci]], [0, 100])
+    pad = 0.3 * (hi - lo) + 60
+    ax.set_ylim(lo - pad, hi + pad)
+    ax.set(xlabel="minutes after the last observation",
+           ylabel=f"{'Dec' if coord == 'dec' else 'RA − sidereal'} (arcsec)",
+           title=f"Fig. 6 — 72-min prediction (run {run})")
+    ax.legend(fontsize=8, ncol=2)
+    return ax
+
+
+def plot_error_distribution(res: PredictionResults, coord: str = "dec", *,
+                            bound: float | None = None,
+                            methods: tuple[str, ...] = ("ransac", "wransac", "ideal"),
+                            ax: plt.Axes | None = None) -> plt.Axes:
+    """Fig. 7: prediction error versus time ahead, all runs (median and 5–95 % band)."""
+    ax = get_ax(ax, figsize=(7.5, 4))
+    ci = COORDS.index(check_choice(coord, "coord", COORDS))
+    sc = res.scenario
+    tm = (sc.t_pred_s - sc.t_obs_s[-1]) / 60.0
+    for k, m in enumerate(m for m in methods if m in res.methods):
+        e = res.errors[:, res.methods.index(m), ci]
+        lo, med, hi = np.percentile(e, [5, 50, 95], axis=0)
+        ax.plot(tm, med, label=METHOD_LABELS.get(m, m), color=f"C{k}")
+        ax.fill_between(tm, lo, hi, color=f"C{k}", alpha=0.15)
+    if bound is not None:
+        ax.axhline(bound, ls="--", c="k", lw=0.8, label=f"paper's ±{bound:g}″")
+        ax.axhline(-bound, ls="--", c="k", lw=0.8)
+    ax.set(xlabel="minutes ahead", ylabel="prediction error (arcsec)",
+           title=f"Fig. 7 — prediction error (median, 5–95 % of {res.n_runs} runs)")
+    ax.legend(fontsize=8, ncol=2)
+    return ax
+
+
+def plot_pull(res: PredictionResults, coord: str = "dec", at_min: float = 72.0, *,
+              ax: plt.Axes | None = None) -> plt.Axes:
+    """The mechanism: WRANSAC − RANSAC against best hypothesis − RANSAC, one dot per run."""
+    from .trials import pull_statistics
+
+    ax = get_ax(ax, figsize=(5.5, 4.5))
+    ci = COORDS.index(check_choice(coord, "coord", COORDS))
+    st = pull_statistics(res, coord, at_min)
+    dt = res.scenario.t_pred_s - res.scenario.t_obs_s[-1]
+    j = int(np.argmin(np.abs(dt - at_min * 60.0)))
+    meth = "wransac_hypothesis" if "wransac_hypothesis" in res.methods else "wransac"
+    r = res.errors[:, res.methods.index("ransac"), ci, j]
+    x = res.hyp_errors[:, ci, j] - r
+    y = res.errors[:, res.methods.index(meth), ci, j] - r
+    ax.plot(x, y, ".", alpha=0.6, label="runs")
+    xs = np.array([x.min(), x.max()])
+    ax.plot(xs, st["slope"] * xs, "C3-", label=f"slope {st['slope']:.2f}, corr {st['corr']:.2f}")
+    ax.plot(xs, xs, "k:", lw=0.8, label="all the way to the hypothesis")
+    ax.axhline(0, c="0.6", lw=0.6)
+    ax.set(xlabel=f"best 4-point hypothesis − RANSAC at +{st['minutes_ahead']:.0f} min (″)",
+           ylabel="WRANSAC − RANSAC (″)",
+           title="The pull toward the hypothesis (weights from its residuals)")
+    ax.legend(fontsize=8)
+    return ax
+
+
+def plot_leverage(res: PredictionResults, coord: str = "dec", *,
+                  ax: plt.Axes | None = None) -> plt.Axes:
+    """Gauss–Markov prediction spread of OLS on the true inliers versus minutes ahead."""
+    ax = get_ax(ax, figsize=(6, 3.8))
+    ci = COORDS.index(check_choice(coord, "coord", COORDS))
+    sc = res.scenario
+    tm = (sc.t_pred_s - sc.t_obs_s[-1]) / 60.0
+    gm = np.sqrt(np.mean(res.gm_sd[:, ci] ** 2, axis=0))
+    ax.plot(tm, gm, "k-", label="Gauss–Markov / Cramér–Rao σ_pred")
+    for k, m in enumerate(x for x in ("ransac", "wransac", "ideal") if x in res.methods):
+        ax.plot(tm, res.errors[:, res.methods.index(m), ci].std(axis=0), color=f"C{k}",
+                label=f"{METHOD_LABELS.get(m, m)} (measured)")
+    ax.set(xlabel="minutes ahead", ylabel="prediction error sd (arcsec)",
+           title="Extrapolation leverage: noise amplification with horizon")
+    ax.legend(fontsize=8)
+    return ax
+
+
+def plot_ratio_table(table: pd.DataFrame, coord: str = "dec", *,
+                     ax: plt.Axes | None = None) -> plt.Axes:
+    """Forest plot of the variance ratios to RANSAC with their 95 % intervals."""
+    ax = get_ax(ax, figsize=(7, 3.8))
+    sub = table.xs(coord, level="coordinate")
+    labels = [f"{n} · {m}" for n, m in sub.index]
+    y = np.arange(len(sub))[::-1]
+    r = sub["var ratio to RANSAC"].to_numpy()
+    err = np.stack([r - sub["95 % lo"].to_numpy(), sub["95 % hi"].to_numpy() - r])
+    ax.errorbar(r, y, xerr=err, fmt="o", capsize=3)
+    ax.axvline(1.0, c="k", lw=0.8)
+    ax.set_yticks(y, labels, fontsize=8)
+    ax.set_xscale("log")
+    ax.set(xlabel="variance ratio to RANSAC (72-min window, paired, 95 % bootstrap)",
+           title=f"Which reading × noise gives the paper's ordering? ({coord})")
+    return ax
+
+
+def plot_budget(errors: np.ndarray, budgets: tuple[int, ...], methods: tuple[str, ...],
+                budget: int, show: tuple[str, ...], *, bound: float = 27.0,
+                ax: plt.Axes | None = None) -> plt.Axes:
+    """Worst 72-min Dec error per run for the chosen U and methods (box plot, log scale)."""
+    ax = get_ax(ax, figsize=(7.5, 4))
+    if budget not in budgets:
+        raise ValueError(f"budget must be one of {list(budgets)}, got {budget}")
+    bi = list(budgets).index(budget)
+    show = [m for m in show if m in methods]
+    worst = np.abs(errors[:, bi]).max(axis=-1)  # runs, methods
+    data = [worst[:, methods.index(m)] for m in show]
+    if data:
+        ax.boxplot(data, whis=(5, 95), showfliers=True, flierprops={"ms": 3})
+        ax.set_xticks(range(1, len(show) + 1),
+                      [f"{METHOD_LABELS.get(m, m)}\n{np.mean(d <= bound):.0%} ≤ {bound:g}″"
+                       for m, d in zip(show, data, strict=True)], fontsize=7, rotation=20)
+    ax.axhline(bound, ls="--", c="k", lw=0.8)
+    ax.set_yscale("log")
+    ax.set(ylabel="worst |Dec error| over 72 min (″)",
+           title=f"U = {budget} hypotheses, {errors.shape[0]} runs per method (reduced from "
+                 "the 300 of the main run)")
+    return ax
+
+
+def plot_threshold_sensitivity(df: pd.DataFrame, *, ax: plt.Axes | None = None) -> plt.Axes:
+    """RMS 72-min error versus t/σ per loss."""
+    ax = get_ax(ax)
+    for c in df.columns:
+        ax.plot(df.index, df[c], "o-", label=c)
+    ax.set_yscale("log")
+    ax.set(xlabel="threshold t / σ", ylabel="median RMS 72-min error (arcsec)",
+           title="Threshold sensitivity (beyond the paper)")
+    ax.legend(fontsize=8)
+    return ax
+
+
+def plot_eclipse_season(sc: Scenario, *, ax: plt.Axes | None = None) -> plt.Axes:
+    """Length of each Earth-shadow pass of the object over the searched span."""
+    ax = get_ax(ax)
+    d = sc.extra["eclipse_durations_min"]
+    ax.bar(np.arange(len(d)), d, color="C0")
+    ax.axhline(72, ls="--", c="k", lw=0.8, label="72 min (paper)")
+    ax.set(xlabel="shadow pass (chronological)", ylabel="shadow duration (min)",
+           title=f"Earth-shadow passes of NORAD {sc.extra['norad_id']}")
+    ax.legend()
+    return ax
+
+
+def plot_generalisation(table: pd.DataFrame, *, ax: plt.Axes | None = None) -> plt.Axes:
+    """Worst 72-min error per method and scenario (log scale)."""
+    ax = get_ax(ax, figsize=(8, 4))
+    worst = table["worst"]
+    x = np.arange(len(worst.index))
+    k = len(worst.columns)
+    for i, m in enumerate(worst.columns):
+        ax.bar(x + (i - k / 2) * 0.8 / k, worst[m], width=0.8 / k,
+               label=METHOD_LABELS.get(m, m))
+    ax.set_yscale("log")
+    ax.set_xticks(x, worst.index, fontsize=8)
+    ax.axhline(27, ls="--", c="k", lw=0.8)
+    ax.set(ylabel="worst |error| in 72 min, RA or Dec (″)", title="Generalisation")
+    ax.legend(fontsize=7, ncol=3)
+    return ax
