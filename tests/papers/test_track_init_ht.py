@@ -108,3 +108,17 @@ def test_initiator_against_formulas(rep):
     assert abs(lo["track with >= T_h target points"] - lo["P_DT eq.13"]) < 0.02
     # nearest-neighbour association loses the target among dense false alarms
     assert hi["track with >= T_h target points"] < hi["P_DT eq.13"] - 0.15
+
+
+def test_explore_figure_updates_one_figure_in_place():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    f_a = exp.explore_figure()
+    f_b = exp.explore_figure(snr=3.0, window=3, target_pixels=25, s=25, frames=5, min_hits=20,
+                             show_eq7=False)
+    assert f_a is f_b  # no new figure per redraw
+    a1, a2 = f_b.axes
+    assert "S = 9" in a1.get_title() and "T_h = 5" in a2.get_title()  # clipped to W_S and T
+    assert a1.get_xlim() == (0.5, 9.5) and a2.get_xlim() == (0.5, 5.5)
+    assert len(a1.get_legend().get_texts()) == 2  # eq. (7) hidden

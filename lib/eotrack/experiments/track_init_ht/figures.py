@@ -11,7 +11,9 @@ from typing import Any
 import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
+from matplotlib.figure import Figure
 from matplotlib.patches import Rectangle
+from matplotlib.ticker import LogFormatter, NullLocator
 
 from eotrack.plotting import get_ax
 from eotrack.tracking import hypothesis as hyp
@@ -285,15 +287,55 @@ def plot_snr_sweep(df: pd.DataFrame, *, ax: plt.Axes | None = None) -> plt.Axes:
     return ax
 
 
+#: The Explore panel's figure, built once and updated in place (see :func:`explore_figure`).
+_EXPLORE: dict[str, Any] = {}
+
+
+def _explore_artists() -> dict[str, Any]:
+    """Build the Explore figure once: two log axes, their lines and markers (no pyplot state)."""
+    if _EXPLORE:
+        return _EXPLORE
+    fig = Figure(figsize=(11, 3.9))
+    a1, a2 = fig.subplots(1, 2)
+    x = np.arange(1, 3)
+    # plain text only (no mathtext): a redraw must not re-parse TeX-like labels
+    art = {
+        "fig": fig, "a1": a1, "a2": a2,
+        "pfa": a1.semilogy(x, x, "k-", label="P_FA eq. (4)")[0],
+        "exact": a1.semilogy(x, x, "C0-", lw=2, label="P_DA exact count")[0],
+        "eq7": a1.semilogy(x, x, "C3--", label="P_DA eq. (7)")[0],
+        "s": a1.axvline(1, color="0.5", lw=0.8),
+        "pds": a2.semilogy(x, x, "C1-o", label="P_DS eq. (12)")[0],
+        "pdt": a2.semilogy(x, x, "C2--s", label="P_DT eq. (13)")[0],
+        "pft": a2.semilogy(x, x, "k:", label="P_FT eq. (9)")[0],
+        "th": a2.axvline(1, color="0.5", lw=0.8),
+    }
+    for a in (a1, a2):
+        a.set_ylim(1e-12, 2)
+        a.set_yticks(10.0 ** np.arange(-12, 1, 3))
+        a.yaxis.set_major_formatter(LogFormatter())
+        a.yaxis.set_minor_locator(NullLocator())
+    a1.set(xlabel="clustering threshold S", ylabel="probability")
+    a2.set(xlabel="hits needed T_h")
+    a2.legend(fontsize=8, loc="lower left")
+    a1.set_title("placeholder\nplaceholder", fontsize=9)
+    a2.set_title("placeholder\nplaceholder", fontsize=9)
+    fig.tight_layout()
+    _EXPLORE.update(art)
+    return _EXPLORE
+
+
 def explore_figure(snr: float = 2.0, log10_p_f: float = -2.5, window: int = 5,
                    target_pixels: int = 4, s: int = 4, gate: int = 3, frames: int = 7,
-                   min_hits: int = 5, show_eq7: bool = True) -> plt.Figure:
+                   min_hits: int = 5, show_eq7: bool = True) -> Figure:
     """The closed forms for one setting: Fig. 1 (left) and Fig. 2 at that ``P_F`` (right).
 
     Left: ``P_FA`` (eq. 4) and ``P_DA`` (exact count; eq. 7 if ``show_eq7``) versus ``S``, the
     chosen ``S`` marked. Right: ``P_DS``, ``P_DT``, ``P_FT`` (eqs. 12, 13, 9) versus ``T_h``,
     the chosen ``T_h`` marked. Values that the controls make inconsistent are clipped
-    (``T_S, S ≤ W_S``; ``T_h ≤ T``). Closed forms only: no Monte Carlo, so it redraws at once.
+    (``T_S, S ≤ W_S``; ``T_h ≤ T``). Closed forms only, no Monte Carlo; the figure is built once
+    and its lines updated on every call (the same ``Figure`` is returned), so a widget redraw
+    costs one render.
     """
     p_f = 10.0 ** log10_p_f
     n = window * window
@@ -301,32 +343,35 @@ def explore_figure(snr: float = 2.0, log10_p_f: float = -2.5, window: int = 5,
     s = min(s, n)
     min_hits = min(min_hits, frames)
     p_d = float(hyp.snr_to_pd(snr, p_f))
-    fig, (a1, a2) = plt.subplots(1, 2, figsize=(11, 3.9))
+    art = _explore_artists()
+    a1, a2 = art["a1"], art["a2"]
     ss = np.arange(1, n + 1)
+    floor = 1e-300  # zeros cannot be drawn on a log axis
     pfa = hyp.area_false_alarm(p_f, window, ss)
     exact = hyp.area_detection_exact(p_d, p_f, window, target_pixels, ss)
-    a1.semilogy(ss, pfa, "k-", label="$P_{FA}$ eq. (4)")
-    a1.semilogy(ss, exact, "C0-", lw=2, label="$P_{DA}$ exact count")
-    if show_eq7:
-        a1.semilogy(ss, hyp.area_detection(p_d, p_f, window, target_pixels, ss), "C3--",
-                    label="$P_{DA}$ eq. (7)")
-    a1.axvline(s, color="0.5", lw=0.8)
-    a1.set(ylim=(1e-12, 2), xlabel="clustering threshold S", ylabel="probability")
-    a1.set_title(f"SNR {snr:g} → $P_D$ = {p_d:.3f}; at S = {s}: $P_{{FA}}$ = {pfa[s - 1]:.1e}, "
-                 f"exact $P_{{DA}}$ = {exact[s - 1]:.3f}", fontsize=9)
-    a1.legend(fontsize=8, loc="lower left")
+    art["pfa"].set_data(ss, np.maximum(pfa, floor))
+    art["exact"].set_data(ss, np.maximum(exact, floor))
+    art["eq7"].set_data(ss, np.maximum(hyp.area_detection(p_d, p_f, window, target_pixels, ss),
+                                       floor))
+    art["eq7"].set_visible(bool(show_eq7))
+    art["s"].set_xdata([s, s])
+    a1.set_xlim(0.5, n + 0.5)
+    handles = [art["pfa"], art["exact"]] + ([art["eq7"]] if show_eq7 else [])
+    a1.legend(handles=handles, fontsize=8, loc="lower left")
+    # plain-text titles: mathtext with changing numbers would be re-parsed on every redraw
+    a1.set_title(f"SNR {snr:g} → P_D = {p_d:.3f}, window {window}×{window}, T_S = "
+                 f"{target_pixels}\nat S = {s}: P_FA = {pfa[s - 1]:.1e}, exact "
+                 f"P_DA = {exact[s - 1]:.3f}", fontsize=9)
     th = np.arange(1, frames + 1)
-    pds = hyp.sequence_detection(p_d, p_f, gate, frames, th)
     pdt = hyp.track_detection(p_d, frames, th)
     pft = hyp.track_false_alarm(p_f, gate, frames, th)
-    a2.semilogy(th, pds, "C1-o", label="$P_{DS}$ eq. (12)")
-    a2.semilogy(th, pdt, "C2--s", label="$P_{DT}$ eq. (13)")
-    a2.semilogy(th, pft, "k:", label="$P_{FT}$ eq. (9)")
-    a2.axvline(min_hits, color="0.5", lw=0.8)
-    a2.set(ylim=(1e-12, 2), xlabel="hits needed $T_h$")
+    art["pds"].set_data(th, np.maximum(hyp.sequence_detection(p_d, p_f, gate, frames, th),
+                                       floor))
+    art["pdt"].set_data(th, np.maximum(pdt, floor))
+    art["pft"].set_data(th, np.maximum(pft, floor))
+    art["th"].set_xdata([min_hits, min_hits])
+    a2.set_xlim(0.5, frames + 0.5)
     i = min_hits - 1
-    a2.set_title(f"$P_F$ = {p_f:.2g}, gate {gate}×{gate}, T = {frames}; at $T_h$ = {min_hits}: "
-                 f"$P_{{DT}}$ = {pdt[i]:.3f}, $P_{{FT}}$ = {pft[i]:.1e}", fontsize=9)
-    a2.legend(fontsize=8, loc="lower left")
-    fig.tight_layout()
-    return fig
+    a2.set_title(f"P_F = {p_f:.2g}, gate {gate}×{gate}, T = {frames}\nat T_h = {min_hits}: "
+                 f"P_DT = {pdt[i]:.3f}, P_FT = {pft[i]:.1e}", fontsize=9)
+    return art["fig"]
