@@ -67,6 +67,8 @@ html_theme_options = {
     "use_fullscreen_button": False,
     "navigation_with_keys": False,
     "show_navbar_depth": 1,
+    # the index's tables need the width; other pages keep their "Contents" column
+    "secondary_sidebar_items": {"**": ["page-toc"], "notebooks/00_index": []},
 }
 html_last_updated_fmt = None
 html_copy_source = False

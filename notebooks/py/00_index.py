@@ -77,7 +77,7 @@ PATH = {
            "01–06", "all of the above"),
 }
 rows = ["| # | notebook | topic | after | maths | worked solutions |", "|---|---|---|---|---|---|"]
-for nb in notebooks.itertuples():
+for nb in notebooks[notebooks["number"] != "00"].itertuples():
     topic, after, maths = PATH.get(nb.number, ("see the notebook's header", "01", "—"))
     sol = f"[solutions]({nb.solutions})" if nb.solutions else "—"
     rows.append(f"| {nb.number} | [{nb.title}]({nb.path}) | {topic} | {after} | {maths} | {sol} |")
@@ -93,13 +93,15 @@ display(Markdown("\n".join(rows)))
 # section and each paper's REPORT give the numbers and the reasons.
 
 # %% tags=["hide-input"]
-table = ["| notebook | paper | claims | reproduced | partial | not reproduced | report |",
+titles = dict(zip(notebooks["stem"], notebooks["title"], strict=True))
+table = ["| # | notebook | claims | reproduced | partial | not reproduced | report |",
          "|---|---|---|---|---|---|---|"]
 for r in scores.to_dict("records"):
-    nb = f"[{r['notebook'][:2]}]({r['notebook']}.ipynb)" if r["notebook"] else "—"
+    stem = r["notebook"]
+    nb = f"[{titles.get(stem, stem)}]({stem}.ipynb)" if stem else "—"
     report = f"[{r['slug']}](../papers_repro/{r['slug']}/REPORT.md)"
-    table.append(f"| {nb} | {r['paper']} | {r['claims']} | {r['reproduced']} | {r['partial']} "
-                 f"| {r['not reproduced']} | {report} |")
+    table.append(f"| {stem[:2] or '—'} | {nb} | {r['claims']} | {r['reproduced']} "
+                 f"| {r['partial']} | {r['not reproduced']} | {report} |")
 display(Markdown("\n".join(table)))
 totals = scores[["claims", "reproduced", "partial", "not reproduced"]].sum()
 display(Markdown(f"In all: **{totals['claims']}** claims over **{len(scores)}** papers — "
