@@ -1,7 +1,7 @@
 # ---
 # jupyter:
 #   kernelspec:
-#     display_name: Python 3
+#     display_name: Python 3 (ipykernel)
 #     language: python
 #     name: python3
 # ---
@@ -14,40 +14,56 @@
 # 導航方法研究). Aerospace Shanghai **33**(6):136–141, 2016.
 # [DOI 10.19328/j.cnki.1006-1630.2016.06.020](https://doi.org/10.19328/j.cnki.1006-1630.2016.06.020)
 #
-# **What the paper does.** A chaser spacecraft estimates the position and attitude of a
-# target that carries no markers, from one camera and natural feature points whose 3-D
-# positions on the target are known. Feature extraction and matching produce gross errors, and
-# many features cost computation. The paper (i) removes gross errors with RANSAC (6 random
-# points, a linear pose, an inlier test), then (ii) scores point sets by the Cramér–Rao lower
-# bound (CRLB) of the pose and keeps only the inliers that lower it, claiming about a third
-# fewer points *and* a more accurate pose (Figs. 4–6).
+# **What the paper does.** A chaser spacecraft estimates the position and attitude of a target
+# that carries no markers, from one camera and natural feature points whose 3-D positions on
+# the target are known. Matching produces gross errors, and many features cost computation.
+# The paper (i) removes gross errors with RANSAC (6 random points, a linear pose, an inlier
+# test), then (ii) scores point sets by the Cramér–Rao lower bound (CRLB) of the pose and keeps
+# only the inliers that lower it, claiming about a third fewer points *and* a more accurate
+# pose (Figs. 4–6).
 #
-# **The catch this notebook is about.** Fisher information is additive over points, so the
-# exact CRLB can only fall when a point is added: read literally, the selection keeps every
-# inlier. We show this, implement the readings that do drop points, and say which one
-# reproduces the paper's effect.
+# **The lesson in one line.** Fisher information only adds up, so the exact CRLB can only fall
+# when a point is added: read literally, the selection keeps every inlier. Something else —
+# here, a noise level estimated from the data — must be doing the work.
 #
-# Most equations of the paper were images and are lost; they are re-derived here. The scorecard
-# status is printed at the end of *Setup* and tabulated in section 6 (`make repro` writes the
-# same numbers to `papers_repro/ransac_crlb_pose/REPORT.md`).
-
-# %% [markdown]
-# ## 2 · Setup
+# ## Learning objectives
+# After this notebook you can
+# 1. write the pinhole model of a pose and its Jacobian, and derive the Fisher information and
+#    CRLB of a pose from N image points (and handle the quaternion's unit-norm constraint);
+# 2. run RANSAC on a pose problem by hand and recognise the planar two-fold ("flip") ambiguity;
+# 3. prove, and show numerically, that adding a measurement can never raise the CRLB;
+# 4. judge a paper's claim with a reading fixed *before* the run, and correct the exploratory
+#    comparisons for their number (Holm).
+#
+# **Prerequisites.** Notebook 01 (RANSAC, the number of draws); least squares and the Gaussian
+# likelihood; 3-D rotations (rotation matrix, quaternion, small-angle vector).
 
 # %%
-import importlib.metadata as md
+import json
+
+from eotrack.repro import papers_repro_dir
+from IPython.display import Markdown, display
+
+_card = json.loads((papers_repro_dir() / "ransac_crlb_pose" / "scorecard.json").read_text())
+display(Markdown(f"**Scorecard (last `make repro`):** {_card['summary']} — recomputed below "
+                 "in *Scorecard* with the same configuration."))
+
+# %% [markdown]
+# ## Setup
+
+# %%
 import time
 
-import cv2
-import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
-from eotrack import plotting
+from eotrack.exercises import check, get_checker
 from eotrack.experiments import ransac_crlb_pose as E
 from eotrack.montecarlo import TrialRunner
+from eotrack.notebook import dropdown, float_slider, panel, setup_notebook, toggle, versions
 from eotrack.pose import (
     RansacConfig,
     constrained_crlb,
+    dlt_pose,
     finite_difference_jacobian,
     minimal_to_quaternion_jacobian,
     pose_crlb,
@@ -58,222 +74,203 @@ from eotrack.pose import (
     quaternion_from_matrix,
     ransac_pose_dlt,
     ransac_pose_opencv,
+    reprojection_errors,
     rotation_error_deg,
-    select_features_crlb,
 )
-from eotrack.repro import load_claims
+from eotrack.repro import load_claims, scorecard
 from eotrack.robust import min_samples
+from scipy import stats
 
-plotting.style()
-pd.set_option("display.precision", 4)
-pd.set_option("display.max_colwidth", 140)
-pd.set_option("display.width", 200)
+setup_notebook()
 
 # %% tags=["parameters"]
-N_RUNS = 300         # Figs. 4-5: the paper's 300 runs
-N_RUNS_COUNTS = 80   # Fig. 6: the paper's 80 runs
-N_MC = 100           # efficiency Monte Carlo per noise level (make repro: 200)
-N_BUDGET = 10        # scenes for budgeted selection (make repro: 30)
-QUICK = False
+N_RUNS = 300         # Figs. 4-5: the paper's 300 runs (make repro: 300)
+N_RUNS_COUNTS = 80   # Fig. 6: the paper's 80 runs (make repro: 80)
+N_MC = 200           # efficiency Monte Carlo per noise level (make repro: 200)
+N_BUDGET = 30        # scenes for budgeted selection (make repro: 30)
+N_ELLIPSOID = 300    # ML draws for the CRLB ellipsoid (notebook only)
+QUICK = False        # True: 60 / 30 runs, as reproduce(quick=True)
 
 # %%
-print("versions:", {p: md.version(p) for p in ("numpy", "scipy", "opencv-python-headless",
-                                               "eotrack")})
+print(versions())
 claims = load_claims("ransac_crlb_pose")
 sc = E.Scenario()
 st = E.Settings(n_runs=N_RUNS, n_runs_counts=N_RUNS_COUNTS, n_mc_efficiency=N_MC,
                 n_runs_budget=N_BUDGET)
-
-# %% tags=["nbval-ignore-output"]
-# the whole reproduction (about 30 s); progress bars appear while it runs
-rep = E.reproduce(quick=QUICK, settings=st, runner=TrialRunner(progress=True))
-plt.close("all")  # the report's figures; the notebook draws its own below
-runs, counts = rep.data["runs"], rep.data["counts"]
-
-# %%
-print("Scorecard:", rep.status_summary())
+runner = TrialRunner(progress=False)
 
 # %% [markdown]
-# ## 3 · Notation
+# ## Notation
 #
 # | paper | code | meaning | unit |
 # |---|---|---|---|
 # | $r_t$ | `points`, `X` | feature point in the target body frame | m |
-# | $r_c$ | `camera_points(...)` | the point in the camera frame, $r_c = C_{ct}(q)\,r_t + t$ | m |
-# | $C_{ct}$, $q=(q_0,q_1,q_2,q_3)$ | `R`, `quaternion_from_matrix(R)` | attitude target → camera (scalar-first quaternion) | – |
+# | $r_c$ | `R @ X + t` | the point in the camera frame, $r_c = C_{ct}(q)\,r_t + t$ | m |
+# | $C_{ct}$, $q=(q_0,\dots,q_3)$ | `R`, `quaternion_from_matrix(R)` | attitude target → camera (scalar-first) | – |
 # | $t=(t_1,t_2,t_3)$ | `t` | target centre of mass in the camera frame | m |
 # | $f$ | `Scenario.focal_m`, `K` | focal length; `K = diag(f, f, 1)` with $f$ in mm | m |
-# | $(\mu,\nu)$ | `pixels`, `u` | image coordinates (here: mm on the focal plane) | mm |
-# | $\sigma^2$ | `sigma_px**2` | noise variance of each image coordinate | mm² |
+# | $(\mu,\nu)$ | `pixels`, `u` | image coordinates (mm on the focal plane) | mm |
+# | $\sigma^2$, $\sigma_i^2$ | `sigma_px**2` | noise variance of each image coordinate (of point $i$) | mm² |
 # | $N$ | `len(points)` | number of feature points | – |
 # | $\theta$ | `(t, q)` (7) or `(δt, δθ)` (6) | pose parameters | m, rad |
+# | $G_i$ | `projection_jacobian(...)` | $\partial u_i/\partial\theta$, 2×6 | mm/m, mm/rad |
 # | $J$ | `pose_fisher_information(...)` | Fisher information | – |
 # | CRLB $=J^{-1}$ | `pose_crlb(...)`, `constrained_crlb(...)` | lower bound on the covariance | m², rad² |
-# | "weighted CRLB sum" | `set_score(...)` | $\sum_k w_k\,\mathrm{CRLB}_{kk}$ over the 7 parameters | – |
+# | score | `set_score(...)` | weighted sum of the 7 CRLB values of a point set | – |
 
 # %% [markdown]
-# ## 4 · The method, step by step
+# ## The method, step by step
 #
-# ### 4.1 Frames and camera model (§1, eqs. 1–2)
+# ### Frames and camera model (§1, eqs. 1–2)
 #
-# The camera frame has $z$ along the optical axis and $x, y$ along the image axes. A target
-# point maps to the camera frame and the image as
+# The camera frame has $z$ along the optical axis and $x, y$ along the image axes; the target
+# frame sits at the target's centre of mass. A target point maps to the camera frame and the
+# image as
 #
-# $$ r_c = C_{ct}(q)\, r_t + t, \qquad
-#    \begin{pmatrix}\mu\\ \nu\end{pmatrix} = \frac{1}{z_c}\begin{pmatrix} f x_c\\ f y_c
-#    \end{pmatrix} \quad(\text{+ principal point}) $$
+# $$ r_c = C_{ct}(q)\, r_t + t \quad (1), \qquad
+#    \begin{pmatrix}\mu\\ \nu\end{pmatrix} = \frac{f}{z_c}\begin{pmatrix} x_c\\ y_c
+#    \end{pmatrix} \quad (2)$$
 #
-# i.e. $u = K r_c / z_c$. The scene of §3: $t = [1, 1.2, 10]$ m, attitude angles
-# $[15°, 20°, 10°]$ (sequence not given; we use x-y-z), $f = 0.01$ m, 160–180 points on a plane
-# 1 m from the target ("22 m²", read as 2 m × 2 m), noise variances 0.02 or 0.1 for 90 % of the
-# points and 3 for 10 %.
+# i.e. $u = K r_c / z_c$. The scene of §3 is drawn below from the library's own scene object:
+# camera at the origin, target 10 m away, 160–180 feature points on a 2 m × 2 m plane 1 m in
+# front of the target's centre (the printed "22 m²" read as 2 m × 2 m), 10 % of them gross
+# errors.
 
 # %%
 scene = E.make_scene(np.random.default_rng(1), sc)
+ax = E.draw_scene_3d(scene)
+
+# %%
 n = len(scene.points)
-print(f"{n} points, {scene.gross.sum()} gross errors; image extent (mm): "
-      f"{np.ptp(project_points(scene.points, sc.R, sc.t, sc.K), axis=0).round(2)}")
-print("noise σ (mm):", np.unique(scene.sigma.round(3)))
-
-# check: with no noise the linear (DLT) pose recovers the truth exactly
-from eotrack.pose import dlt_pose
-
 u0 = project_points(scene.points, sc.R, sc.t, sc.K)
+print(f"{n} points, {scene.gross.sum()} gross errors; image extent (mm): "
+      f"{np.ptp(u0, axis=0).round(2)}; noise σ (mm): {np.unique(scene.sigma.round(3))}")
+# check: with no noise the linear (DLT) pose recovers the truth exactly
 R_dlt, t_dlt = dlt_pose(scene.points, u0, sc.K)
 assert np.allclose(R_dlt, sc.R, atol=1e-9) and np.allclose(t_dlt, sc.t, atol=1e-9)
-print("noise-free DLT pose error below 1e-12 m:", bool(np.abs(t_dlt - sc.t).max() < 1e-12))
 
 # %% [markdown]
-# Note the scale: the whole target covers about 2 mm of the focal plane, while a noise variance
-# of 0.02 mm² is a standard deviation of 0.14 mm — 7 % of the target's image. With the values
-# as printed this is a very noisy problem (see section 8).
+# Note the scale: the whole target covers about 2 mm of the focal plane, while a variance of
+# 0.02 mm² is a standard deviation of 0.14 mm. With the values as printed this is a very noisy
+# problem (see *Errata*).
 #
-# ### 4.2 RANSAC feature selection (§2.2)
+# ### RANSAC feature selection (§2.2) — one trial by hand
 #
-# 1. Draw 6 feature points at random and estimate the pose from them. All features lie on one
-#    plane, where the 3×4 DLT is rank-deficient, so the linear solution is the plane homography
-#    $x̂ \sim \lambda[R e_1,\ R e_2,\ R c + t]\,(a, b, 1)^\top$ (Hartley-normalised, 6 points).
-# 2. Test every point: inlier if its reprojection error is below a threshold (paper: not given;
-#    ours: $\sqrt{\chi^2_{2,0.99}\,\sigma^2_{\max}} = 0.96$ mm).
-# 3. Accept the model when enough points are inliers (ours: 60 %); re-estimate the pose from
-#    all its inliers (§2.2, general description).
-# 4. Otherwise draw again. 5. After a preset number of draws (ours: 500) report failure: the
-#    image is discarded — a result, not an exception.
+# 1. Draw 6 points at random and estimate the pose. All features lie on one plane, where the
+#    3×4 DLT is rank-deficient, so the linear solution is the plane homography
+#    $\hat x \sim \lambda[R e_1,\ R e_2,\ R c + t]\,(a, b, 1)^\top$ (Hartley-normalised).
+# 2. Test every point: inlier if its reprojection error is below a threshold (not given; ours
+#    $\sqrt{\chi^2_{2,0.99}\,\sigma^2_{\max}}$, in image mm).
+# 3. Accept the model when enough points are inliers (ours: 60 %); re-estimate the pose from all
+#    its inliers.
+# 4. Otherwise draw again; 5. after a preset number of draws report failure — the image is
+#    discarded (a result, not an exception).
 
 # %%
 rng = np.random.default_rng(2)
 cfg = st.ransac_config(sc)
 res = ransac_pose_dlt(scene.points, scene.pixels, sc.K, rng, cfg)
-cv = ransac_pose_opencv(scene.points, scene.pixels, sc.K, threshold_px=cfg.inlier_threshold_px)
-tab = pd.DataFrame({
-    "draws": [res.n_draws, "–"],
-    "inliers": [res.n_inliers, cv.n_inliers],
-    "gross errors kept": [int((res.inliers & scene.gross).sum()),
-                          int((cv.inliers & scene.gross).sum())],
-    "position error (m)": [np.linalg.norm(res.t - sc.t), np.linalg.norm(cv.t - sc.t)],
-    "attitude error (deg)": [rotation_error_deg(res.R, sc.R), rotation_error_deg(cv.R, sc.R)],
-}, index=["paper: 6-point DLT RANSAC", "cv2.solvePnPRansac (SQPnP) + RefineLM"])
-tab
+rows = {"paper: 6-point DLT RANSAC (+refit)": res}
+for label, kw in (("cv2.solvePnPRansac (SQPnP) + LM", {"disambiguate": False}),
+                  ("… + planar disambiguation (default)", {})):
+    rows[label] = ransac_pose_opencv(scene.points, scene.pixels, sc.K,
+                                     threshold_px=cfg.inlier_threshold_px, **kw)
+pd.DataFrame({k: {"inliers": r.n_inliers,
+                  "gross errors kept": int((r.inliers & scene.gross).sum()),
+                  "position error (m)": np.linalg.norm(r.t - sc.t),
+                  "attitude error (deg)": rotation_error_deg(r.R, sc.R)}
+              for k, r in rows.items()}).T
 
 # %% [markdown]
-# In this image both estimators land tens of degrees off — yet the data are not mis-fitted.
-# A small plane seen from 10 m through this much noise has two nearly equally good poses (the
-# planar "flip" ambiguity); compare the reprojection cost of the estimate with that of the truth
-# on the same inliers:
+# Look at the attitude errors: in an image like this one they can be tens of degrees, yet the
+# data are not mis-fitted. A small plane seen from 10 m through this much noise has two nearly
+# equally good poses (the planar "flip" ambiguity). Compare the reprojection cost of the
+# estimate with that of the truth on the same clean inliers — the estimate can fit the noisy
+# data at least as well as the truth:
 
 # %%
-from eotrack.pose import reprojection_errors
-
 inl = res.inliers & ~scene.gross
-cost_est = np.sum(reprojection_errors(scene.points[inl], scene.pixels[inl], res.R, res.t,
-                                      sc.K) ** 2)
-cost_true = np.sum(reprojection_errors(scene.points[inl], scene.pixels[inl], sc.R, sc.t,
-                                       sc.K) ** 2)
-print(f"sum of squared reprojection errors: estimate {cost_est:.2f} mm², truth "
-      f"{cost_true:.2f} mm²")
-assert cost_est <= cost_true  # the estimate fits the data better than the truth does
-
-# %%
-# the gross errors that survive are the ones whose draw happened to land near the truth
-kept = scene.gross & res.inliers
-err_true = np.linalg.norm(scene.pixels - u0, axis=1)
-print(f"gross errors kept: {kept.sum()} of {scene.gross.sum()}, their true error "
-      f"{err_true[kept].round(2)} mm (threshold {cfg.inlier_threshold_px:.2f} mm)")
-assert np.all(err_true[kept] < 2 * cfg.inlier_threshold_px)
-# failure is a reported outcome
-junk = np.random.default_rng(3).uniform(-3, 3, scene.pixels.shape)
-fail = ransac_pose_dlt(scene.points, junk, sc.K, rng, RansacConfig(inlier_threshold_px=0.05,
-                                                                   max_draws=100))
-# how many draws would be needed? eq. (2) of paper 01: U = log(1 − P) / log(1 − (1 − ε)^6)
-print("draws for a clean 6-point sample with 99 % confidence at ε = 10 %:",
+cost = {name: np.sum(reprojection_errors(scene.points[inl], scene.pixels[inl], R, t, sc.K) ** 2)
+        for name, (R, t) in (("estimate", (res.R, res.t)), ("truth", (sc.R, sc.t)))}
+print({k: round(float(v), 2) for k, v in cost.items()}, "(mm²)")
+# how many draws are needed? U = log(1 − P) / log(1 − (1 − ε)^6)  (notebook 01)
+print("draws for a clean 6-point sample, 99 % confidence, ε = 10 %:",
       min_samples(0.99, 0.1, 6), f"(we allow {cfg.max_draws})")
-print("pure-noise image:", fail.success, "-", fail.message)
+junk = np.random.default_rng(3).uniform(-3, 3, scene.pixels.shape)
+fail = ransac_pose_dlt(scene.points, junk, sc.K, rng,
+                       RansacConfig(inlier_threshold_px=0.05, max_draws=100))
+print("pure-noise image:", fail.success, "—", fail.message)
 assert not fail.success
 
 # %% [markdown]
-# ### 4.3 The CRLB of the pose (§2.3, eqs. 3–19 re-derived)
+# ### The CRLB of the pose (§2.3, eqs. 3–5; eqs. 6–19 re-derived)
 #
-# With independent Gaussian noise $N(0, \sigma_i^2)$ on both image coordinates of each point,
-# the log-likelihood is $-\tfrac12\sum_i |u_i - \pi_i(\theta)|^2/\sigma_i^2 + $ const, and
+# The paper's eqs. (3)–(5): for any unbiased estimator
 #
-# $$ J(\theta) = -E\!\left[\frac{\partial^2 \ln p}{\partial\theta\,\partial\theta^\top}\right]
-#    = \sum_{i=1}^N \frac{G_i^\top G_i}{\sigma_i^2}, \qquad G_i = \frac{\partial u_i}{\partial
-#    \theta}, \qquad \mathrm{cov}(\hat\theta) \succeq J^{-1}. $$
+# $$ \mathrm{cov}(\hat\theta) \succeq J^{-1} \quad (3), \qquad
+#    J = -E\!\left[\frac{\partial^2 \ln p(x;\theta)}{\partial\theta\,\partial\theta^\top}\right]
+#    \quad (4), \qquad \theta = (t_1,t_2,t_3,q_0,q_1,q_2,q_3) \quad (5),$$
 #
-# (The paper's $E_{t_1t_1}, E_{t_1t_2}, \dots, E_{qq}$, eqs. 8–17, are the blocks of this sum.)
-# With $u = K r_c / z_c$: $\partial u/\partial r_c = (K_{1:2} - u\,e_3^\top)/z_c$.
+# with every image coordinate carrying white Gaussian noise $N(0,\sigma^2)$. Eqs. (6)–(19)
+# (the blocks $E_{t_1t_1}, E_{t_1t_2}, \dots, E_{qq}$) were images and are lost. Re-derived:
+# with independent noise $N(0, \sigma_i^2)$ on both coordinates of point $i$,
+# $\ln p = -\tfrac12\sum_i |u_i - \pi_i(\theta)|^2/\sigma_i^2 + $ const, so
+#
+# $$ J(\theta) = \sum_{i=1}^N \frac{G_i^\top G_i}{\sigma_i^2}, \qquad
+#    G_i = \frac{\partial u_i}{\partial\theta}, \qquad
+#    \frac{\partial u}{\partial r_c} = \frac{K_{1:2} - u\,e_3^\top}{z_c}. $$
 #
 # **Minimal (6-parameter) form.** Perturb $t \leftarrow t + \delta t$ and
 # $R \leftarrow \exp([\delta\theta]_\times) R$: then $\partial r_c/\partial\delta t = I$ and
 # $\partial r_c/\partial\delta\theta = -[R\,r_t]_\times$.
 #
-# **The paper's 7 parameters** $(t_1,t_2,t_3,q_0,\dots,q_3)$. With $C = C(q/|q|)$ the
-# information is singular along $(0, q)$ — scaling $q$ changes nothing. The constrained CRLB
-# (Stoica & Ng 1998) projects onto the tangent space of $|q| = 1$:
-# $C_7 = U (U^\top J_7 U)^{-1} U^\top$, $U$ an orthonormal basis of $\{(\delta t, \delta q):
-# q^\top\delta q = 0\}$. It must equal the minimal form mapped by
-# $\delta q = \tfrac12 (0, \delta\theta) \otimes q$: $C_7 = E\,C_6\,E^\top$.
+# **The paper's 7 parameters.** With $C = C(q/|q|)$ the information is singular along
+# $(0, q)$ — scaling $q$ changes nothing. The constrained CRLB (Stoica & Ng [5]) projects onto
+# the tangent space of $|q| = 1$: $C_7 = U (U^\top J_7 U)^{-1} U^\top$. It must equal the
+# minimal form mapped by $\delta q = \tfrac12 (0, \delta\theta) \otimes q$:
+# $C_7 = E\,C_6\,E^\top$. The cell checks the Jacobian against finite differences, the
+# singular direction, and the two forms against each other.
 
 # %%
-X_in = scene.points[~scene.gross]
-s_in = scene.sigma[~scene.gross]
+X_in, s_in = scene.points[~scene.gross], scene.sigma[~scene.gross]
 G = projection_jacobian(X_in, sc.R, sc.t, sc.K)
 G_fd = finite_difference_jacobian(X_in, sc.R, sc.t, sc.K, step=1e-6)
-print("max |G − G_fd| < 1e-8:", bool(np.abs(G - G_fd).max() < 1e-8),
-      f"(max |G| = {np.abs(G).max():.2f})")
 assert np.allclose(G, G_fd, atol=1e-6)
-
 J6 = pose_fisher_information(X_in, sc.R, sc.t, sc.K, s_in)
-J6_fd = np.einsum("nki,nkj->ij", G_fd / s_in[:, None, None], G_fd / s_in[:, None, None])
-assert np.allclose(J6, J6_fd, rtol=1e-6)
-
+assert np.allclose(J6, np.einsum("nki,nkj->ij", G / s_in[:, None, None],
+                                 G / s_in[:, None, None]))
 q = quaternion_from_matrix(sc.R)
 J7 = pose_fisher_information_quaternion(X_in, q, sc.t, sc.K, s_in)
-ev = np.sort(np.linalg.eigvalsh(J7))
-print("J7 singular along (0, q):", bool(abs(ev[0]) < 1e-9 * ev[-1]),
-      f"; the other eigenvalues start at {ev[1]:.2f}")
 assert np.allclose(J7 @ np.r_[0, 0, 0, q], 0, atol=1e-8 * np.abs(J7).max())
 C7 = constrained_crlb(J7, q)
-Emap = minimal_to_quaternion_jacobian(q)
 C6 = pose_crlb(X_in, sc.R, sc.t, sc.K, s_in)
+Emap = minimal_to_quaternion_jacobian(q)
 assert np.allclose(C7, Emap @ C6 @ Emap.T, rtol=1e-6, atol=1e-14)
-pd.DataFrame({"parameter": ["t1", "t2", "t3", "q0", "q1", "q2", "q3"],
-              "√CRLB": np.sqrt(np.diag(C7))}).set_index("parameter").T
+pd.DataFrame({"√CRLB": np.sqrt(np.diag(C7))},
+             index=["t1 (m)", "t2 (m)", "t3 (m)", "q0", "q1", "q2", "q3"]).T
 
 # %% [markdown]
-# The bound is attained: a Monte Carlo of the maximum-likelihood pose (weighted
-# Levenberg–Marquardt, started at the truth) reaches RMS / √CRLB ≈ 1 (section 9 has the full
-# table at two noise levels).
+# **The CRLB ellipsoid of one pose.** The bound is a covariance, so it can be drawn: the 1-σ
+# ellipsoid $\{\delta\theta : \delta\theta^\top C^{-1}\delta\theta \le 1\}$ of the attitude
+# block, for a fixed geometry of 40 clean points, with the errors of the maximum-likelihood
+# (weighted Levenberg–Marquardt) pose over repeated noise draws. An efficient estimator puts
+# $P(\chi^2_3 \le 1)$ of its draws inside. At the printed noise level the problem is not
+# quite linear, so expect the Monte Carlo spread to exceed the bound somewhat.
 
 # %%
-eff = rep.data["efficiency"]
-ml_lin = eff[(eff["noise unit (mm)"] == 0.01) & (eff["estimator"] == "ML (from truth)")].iloc[0]
-print(f"ML attitude RMS / √CRLB = {ml_lin['att RMS / CRLB']:.2f}, position "
-      f"{ml_lin['pos RMS / CRLB']:.2f}  ({N_MC} draws, small-noise regime)")
-assert 0.8 < ml_lin["att RMS / CRLB"] < 1.2 and 0.75 < ml_lin["pos RMS / CRLB"] < 1.25
+ml_err, C_geo, geo = E.ml_pose_samples(N_ELLIPSOID, scenario=sc, n_points=40, runner=runner)
+ax = E.plot_crlb_ellipsoid(C_geo, ml_err, block="att")
+
+# %%
+d2 = np.einsum("ni,ij,nj->n", ml_err[:, 3:], np.linalg.inv(C_geo[3:, 3:]), ml_err[:, 3:])
+mc_vs_bound = np.trace(np.cov(ml_err[:, 3:].T)) / np.trace(C_geo[3:, 3:])
+display(Markdown(
+    f"Inside the 1-σ ellipsoid: {np.mean(d2 <= 1):.2f} of {N_ELLIPSOID} draws (efficient: "
+    f"{stats.chi2.cdf(1, 3):.2f}); Monte Carlo attitude variance / CRLB = {mc_vs_bound:.2f}."))
+assert 0.6 < mc_vs_bound < 1.6
 
 # %% [markdown]
-# ### 4.4 CRLB-based selection (§2.4) — and why, as printed, it selects nothing
+# ### CRLB-based selection (§2.4) — and why, as printed, it selects nothing
 #
 # The score of a point set is the weighted sum of the 7 CRLB values (weights not given; ours:
 # all 1). Start like RANSAC with 6 random inliers; if their score is worse than that of all
@@ -282,253 +279,398 @@ assert 0.8 < ml_lin["att RMS / CRLB"] < 1.2 and 0.75 < ml_lin["pos RMS / CRLB"] 
 #
 # But $J(S\cup\{i\}) = J(S) + G_i^\top G_i/\sigma_i^2$ with the added term $\succeq 0$, so
 # $J(S\cup\{i\})^{-1} \preceq J(S)^{-1}$: **every CRLB, and any non-negative weighted sum of
-# them, can only fall when a point is added.** Hence
-#
-# * 6 points can never score better than all inliers → the start test always fails → "use all
-#   inliers" in every run;
-# * even past the start, every added point lowers the score → every inlier is kept.
+# them, can only fall when a point is added.** Six points can never beat all inliers (the start
+# test always fails), and past the start every point is kept. The solid lines below are the
+# exact score along five random orders of one scene's points; the dotted ones are the
+# covariance of an *unweighted* pose on the same sets (the "sandwich"), which can rise when a
+# noisy point joins.
 
 # %%
-sizes, scores, sandwich = rep.data["monotonicity"]
-assert np.all(np.diff(scores, axis=1) <= 1e-12 * scores[:, :1])
-assert np.any(np.diff(sandwich, axis=1) > 0)  # the unweighted estimator's covariance can rise
-fig, ax = plt.subplots()
-E.plot_monotonicity(sizes, scores, sandwich, ax=ax)
-plt.show()
-print(f"score of 6 points / score of all {sizes[-1]}: "
-      f"{(scores[:, 0] / scores[:, -1]).min():.0f}× or more")
+sizes, scores, sandwich = E.monotonicity_curves(np.random.default_rng(st.seed), sc)
+ax = E.plot_monotonicity(sizes, scores, sandwich)
 
 # %%
-resid = scene.pixels[res.inliers] - project_points(scene.points[res.inliers], res.R, res.t, sc.K)
-args = (scene.points[res.inliers], res.R, res.t, sc.K)
-rows = []
-for name, (rule, start) in E.READINGS.items():
-    sel = select_features_crlb(*args, np.random.default_rng(5), rule=rule, start=start,
-                               sigma_px=scene.sigma[res.inliers], residuals=resid)
-    rows.append({"reading": name, "rule": rule, "start": start, "kept": sel.n_selected,
-                 "of": res.n_inliers, "fell back to all": sel.fallback})
-pd.DataFrame(rows).set_index("reading")
+# NBVAL_CHECK_OUTPUT
+print("exact CRLB score non-increasing along every order:",
+      bool(np.all(np.diff(scores, axis=1) <= 1e-12 * scores[:, :1])))
+print("unweighted ('sandwich') score rises somewhere:", bool(np.any(np.diff(sandwich, axis=1) > 0)))
 
 # %% [markdown]
-# So the rule needs another reading to do anything. The ones we implement
-# (`eotrack.pose.selection`):
-#
-# | reading | score of a set $S$ | monotone? |
-# |---|---|---|
-# | **as printed** | exact CRLB with each point's $\sigma_i$; start: raw score of 6 vs all | yes — keeps all |
-# | **exact** | same score; start compares the score *per point*, $|S|\cdot$score | yes — keeps all |
-# | **pooled** | eq. (5)'s single $\sigma^2$, estimated from the set's own residuals: $\hat\sigma^2(S)\,\mathrm{tr}\,W(\sum_S G_i^\top G_i)^{-1}$ | no |
-# | **sandwich** | covariance of the *unweighted* least-squares pose, with each point's $\sigma_i$: $H^{-1}(\sum_S\sigma_i^2G_i^\top G_i)H^{-1}$ | no |
-# | **tolerance** | exact CRLB, but keep a point only if it lowers the score by > 1 % | yes, with a stopping rule |
-#
-# The 300-run experiment omits *exact* (it keeps every inlier, like *as printed*; the Fig. 6
-# set includes it). The non-monotone readings use the per-point start test (6 points vs all, per point). After
-# selection the pose is re-estimated by **unweighted** Levenberg–Marquardt, as a paper without
-# per-point weights would do. Only an unweighted solver can be *helped* by dropping points: the
-# weighted (ML) pose on all inliers is also shown, as the bound on what selection can achieve.
-
-# %% [markdown]
-# ## 5 · Figures 4–6
-#
-# The paper's figures were images and are lost; only its statements survive (quoted above each
-# figure). Our headline reading is **sandwich**, the one that comes closest to the paper's
-# effect (see the readings table below and section 6).
-#
-# **Fig. 4 (paper):** "the relative position from the CRLB-selected points is more accurate
-# than with RANSAC alone; accuracy clearly improved" (300 runs).
+# So the rule needs another reading to do anything. The library implements these
+# (`eotrack.pose.selection`, `E.READINGS`): **as printed** (exact CRLB, the paper's start
+# test); **exact** (same score, per-point start test); **pooled** — the paper's eq. (5) model
+# with one $\sigma^2$ for all points, *estimated from the set's own residuals*,
+# $\hat\sigma^2(S) = \sum_S |r_i|^2 / 2|S|$, so a point with a large residual raises the score;
+# **sandwich** — the covariance $H^{-1}(\sum \sigma_i^2 G_i^\top G_i) H^{-1}$ of the unweighted
+# pose with the simulator's true $\sigma_i$ (an oracle); **sandwich (est. σ)** — the same with
+# $\hat\sigma_i^2 = |r_i|^2/2$ from each point's residual (White's heteroskedasticity-consistent
+# estimate [11]); **tolerance** — exact score, but keep a point only when it lowers the score by
+# more than 1 %. Each applied to this trial's inliers, then an unweighted pose on the selection:
 
 # %%
-fig, ax = plt.subplots(figsize=(8, 3.6))
-E.plot_error_runs(runs, "pos", st.reading, ax=ax)
-plt.show()
+Xi, ui, si = scene.points[res.inliers], scene.pixels[res.inliers], scene.sigma[res.inliers]
+trial = {}
+for name in E.READINGS:
+    r = E.select_and_refit(name, Xi, ui, sc.K, res.R, res.t, si, np.random.default_rng(5), st)
+    trial[name] = {"kept": int(r["selected"].sum()), "of": res.n_inliers,
+                   "fell back to all": r["fallback"],
+                   "attitude error (deg)": rotation_error_deg(r["R"], sc.R)}
+trial_table = pd.DataFrame(trial).T
+assert trial_table.loc["as printed", "kept"] == res.n_inliers
+trial_table
 
 # %% [markdown]
-# **Fig. 5 (paper):** the same for the attitude.
+# ### The reading is fixed before the run
+#
+# Which reading is "the paper's"? It has to be decided from the text, before looking at the
+# 300 runs — otherwise we would pick the reading that happens to look best, and a 5 % test
+# repeated over four readings and two metrics finds "something" far more than 5 % of the time.
+# The protocol lives in `papers_repro/ransac_crlb_pose/claims.toml`:
 
 # %%
-fig, ax = plt.subplots(figsize=(8, 3.6))
-E.plot_error_runs(runs, "att", st.reading, ax=ax)
-plt.show()
+proto = E.load_protocol()
+primary = proto["primary_reading"]
+display(Markdown(
+    f"**Primary reading: `{primary}`** — eq. (5) gives all points one σ², nothing in §2.4 gives "
+    "the selection a per-point noise level, and a constant σ² makes the rule select nothing; "
+    "the only quantity of the paper's model that can make a set's score rise is σ² itself, "
+    "which a real system estimates from the residuals. Exploratory: "
+    f"{', '.join(proto['exploratory_readings'])} × {{position, attitude}} = "
+    f"{2 * len(proto['exploratory_readings'])} comparisons, {proto['correction']}-adjusted, "
+    f"α = {proto['alpha']}. (An earlier version used *sandwich*, chosen after seeing the "
+    "results; that choice is withdrawn.)"))
+
+# %% [markdown]
+# ## Reproduction
+#
+# The paper's Figs. 4–6 were images and are lost; only the text's statements survive, so there
+# are no curve values to compare — only directions ("more accurate") and one number (Fig. 6,
+# "about two thirds"). The same 300 (Figs. 4–5) and 80 (Fig. 6) seeded runs as `make repro`:
+# each run simulates an image, runs RANSAC, then every reading, each followed by an unweighted
+# LM pose on its selection; `ml` is the pose weighted by the true σ_i (a reference, not a
+# selection).
+
+# %%
+t0 = time.perf_counter()
+runs = E.run_pose_experiment(60 if QUICK else st.n_runs, scenario=sc, settings=st,
+                             runner=runner)
+st6 = E.Settings(readings=("as printed", "exact", primary, "sandwich"))
+counts = E.run_pose_experiment(30 if QUICK else st.n_runs_counts, scenario=sc, settings=st6,
+                               runner=runner, seed=st.seed + 1)
+print(f"{len(runs)} + {len(counts)} runs in {time.perf_counter() - t0:.0f} s")
+ok = runs[runs["success"]]
+methods = ("ransac", primary, "sandwich", "sandwich (est. σ)", "ml")
 E.error_summary(runs)
 
 # %% [markdown]
-# The spikes to 30–60° are not noise: for a small, distant plane seen through this much noise
-# the pose has two nearly equally good solutions (the planar "flip" ambiguity), and in some runs
-# the wrong one has the lower cost. They hit every method alike.
+# ### Fig. 4 — position error, RANSAC alone vs RANSAC + CRLB
 #
-# Every reading against RANSAC alone, paired run by run (win rate = share of runs where the
-# selection is better; one-sided Wilcoxon signed-rank p-value):
+# *Paper:* "the relative position from the CRLB-selected points is more accurate than with
+# RANSAC alone; accuracy clearly improved" (300 runs). Left: one box per method, each run a
+# faint line joining its errors (what the paired test compares); right: the ECDF.
 
 # %%
-E.readings_table(runs)
+fig = E.figure_errors(runs, "pos", methods)
 
 # %% [markdown]
-# **Fig. 6 (paper):** "the CRLB selection keeps only about two thirds of the RANSAC points
-# (80 runs); in some runs the counts are equal — no combination qualified and all inliers were
-# used."
+# ### Fig. 5 — attitude error, RANSAC alone vs RANSAC + CRLB
+#
+# *Paper:* "the relative attitude from the CRLB-selected points is more accurate" (same runs).
 
 # %%
-fig, ax = plt.subplots(figsize=(8, 3.6))
-E.plot_selected_counts(counts, st.reading,
-                       claims["ransac_crlb_pose.fig6"].paper["selected_fraction"], ax=ax)
-plt.show()
-ok6 = counts[counts["success"]]
-pd.DataFrame({r: {"kept / inliers": (ok6[f"n_{r}"] / ok6["n_inliers"]).mean(),
-                  "runs keeping ≥ 95 % of the inliers":
-                      int(np.sum(ok6[f"n_{r}"] >= 0.95 * ok6["n_inliers"])),
-                  "runs falling back to all inliers": int(ok6[f"fallback_{r}"].sum())}
-              for r in E.READINGS if f"n_{r}" in ok6}).T
+fig = E.figure_errors(runs, "att", methods)
 
 # %% [markdown]
-# The counts are bimodal: most runs keep roughly half to three quarters of the inliers, but
-# some keep nearly all of them — the closest our readings come to the paper's runs with "equal
-# counts". A true
-# fall-back (no 6-point start beating all inliers) never happens with the per-point start test;
-# with the literal test it happens every time.
-
-# %% [markdown]
-# ## 6 · Scorecard
+# Every reading against RANSAC alone, paired run by run: mean ratio (< 1 = better), win rate,
+# one-sided Wilcoxon signed-rank p, and the Holm-adjusted p for the exploratory family. The
+# primary reading's p is the pre-registered test and is not adjusted.
 
 # %%
-rep.scorecard
+readings = E.readings_table(runs, primary=primary)
+readings
+
+# %%
+paper45 = pd.DataFrame(
+    {q: {"paper: runs": claims[f"ransac_crlb_pose.{fig}"].paper["n_runs"],
+         "paper: direction": "CRLB < RANSAC",
+         "ours: runs": len(ok),
+         f"ours ({primary}): mean ratio": readings.loc[(primary, q), "mean ratio"],
+         "ours: p (Wilcoxon)": readings.loc[(primary, q), "p"]}
+     for q, fig in (("pos", "fig4"), ("att", "fig5"))}).T
+paper45
+
+# %%
+r5 = readings.loc[(primary, "att")]
+lo5, hi5 = E.bootstrap_ratio_ci(ok[f"att_{primary}"], ok["att_ransac"])
+ex = readings[readings["role"] == "exploratory"]
+best = ex["p (Holm)"].idxmin()
+display(Markdown(
+    f"**Fig. 5 decision (pre-registered `{primary}`):** mean attitude error ratio "
+    f"{r5['mean ratio']:.3f} (95 % CI {lo5:.2f}–{hi5:.2f}), CRLB better in "
+    f"{100 * r5['win rate']:.0f} % of runs, one-sided Wilcoxon p = {r5['p']:.3f} "
+    f"({'<' if r5['p'] < proto['alpha'] else '≥'} α = {proto['alpha']}). The smallest "
+    f"exploratory Holm-adjusted p is {ex['p (Holm)'].min():.2f} ({best[0]}, {best[1]}; raw "
+    f"{ex.loc[best, 'p']:.3f}). True-noise sandwich vs estimated-noise sandwich, attitude: "
+    f"ratio {readings.loc[('sandwich', 'att'), 'mean ratio']:.3f} vs "
+    f"{readings.loc[('sandwich (est. σ)', 'att'), 'mean ratio']:.3f}, Holm p "
+    f"{readings.loc[('sandwich', 'att'), 'p (Holm)']:.2f} vs "
+    f"{readings.loc[('sandwich (est. σ)', 'att'), 'p (Holm)']:.2f}."))
+assert readings.loc[("as printed", "att"), "kept / inliers"] == 1.0
 
 # %% [markdown]
-# **Which reading reproduces the paper, stated plainly.** The rule as printed (exact CRLB)
-# keeps every inlier in every run and changes nothing. Of the readings that do drop points,
-# **sandwich** — score a set by the covariance of the *unweighted* pose estimate, computed with
-# each point's noise variance (which the simulation knows) — comes closest to the paper: it
-# keeps about two thirds of the inliers, as Fig. 6 says, and lowers the mean position and
-# attitude errors over the 300 runs. But the gains are a few per cent, not a "clear
-# improvement", and only part of them is statistically significant (the scorecard gives the
-# ratios, bootstrap intervals and paired p-values). Two reasons: even keeping exactly the
-# low-noise points would cut an unweighted solver's RMS only to the ratio printed below, and the
-# planar ambiguity adds large run-to-run scatter at the printed noise level. The *pooled*
-# reading (no oracle σ) gains a little less, the *tolerance* reading nothing. No reading
-# reproduces Fig. 6's occasional fall-back to all inliers except the literal one, which always
-# falls back. And weighting all inliers by their variances (the ML pose) beats every selection.
+# The gains of any reading are a few per cent, not a "clear improvement". Two reasons. Even
+# keeping exactly the low-noise points could lower an unweighted solver's RMS only to the ratio
+# printed below; and the flip ambiguity puts some runs tens of degrees off whatever the
+# selection (the long upper whiskers). Weighting every inlier by its variance (`ml`) beats every
+# selection — but needs the σ_i the paper's model does not have.
 
 # %%
 print(f"best possible RMS ratio of an unweighted solver (low-noise points only): "
-      f"{E.best_subset_gain():.3f}")
+      f"{E.best_subset_gain(sc):.3f}")
 
 # %% [markdown]
-# ## 7 · Explore
+# ### Fig. 6 — number of selected points
 #
-# Noise variances, gross errors, number of points, selection reading, noise unit (1 = mm² as
-# printed, 0.01 = px² with a 10 µm pixel) and the budget k of the "best k" (greedy D-optimal)
-# selection. Each change reruns 20 seeded runs. The static figure below uses the paper's
-# settings; the interactive one follows.
+# *Paper:* "the CRLB selection keeps only about two thirds of the RANSAC points (80 runs); in
+# some runs the counts are equal — no combination qualified and all inliers were used."
 
 # %%
-E.explore()
+c6 = claims["ransac_crlb_pose.fig6"].paper
+ax = E.plot_selected_fraction(counts, (primary, "sandwich", "as printed"),
+                              c6["selected_fraction"], tuple(c6["fraction_range"]))
 
-# %% tags=["nbval-ignore-output"]
-import ipywidgets as widgets
-
-
-def _panel(low, high, gross_var, gross_frac, n_points, reading, unit, k):
-    E.explore(low_variance=low, high_variance=high, outlier_variance=gross_var,
-              outlier_fraction=gross_frac, n_points=n_points, reading=reading,
-              noise_unit_mm=unit, k=k)
-    plt.show()
-
-
-widgets.interact(
-    _panel,
-    low=widgets.FloatSlider(value=0.02, min=0.005, max=0.2, step=0.005,
-                            description="var low", continuous_update=False),
-    high=widgets.FloatSlider(value=0.1, min=0.01, max=1.0, step=0.01, description="var high",
-                             continuous_update=False),
-    gross_var=widgets.FloatSlider(value=3.0, min=0.5, max=20.0, step=0.5,
-                                  description="var gross", continuous_update=False),
-    gross_frac=widgets.FloatSlider(value=0.1, min=0.0, max=0.5, step=0.05,
-                                   description="gross frac.", continuous_update=False),
-    n_points=widgets.IntSlider(value=170, min=20, max=400, step=10, description="points",
-                               continuous_update=False),
-    reading=widgets.Dropdown(options=list(E.READINGS), value="sandwich",
-                             description="reading"),
-    unit=widgets.FloatLogSlider(value=1.0, base=10, min=-2, max=0, step=0.5,
-                                description="unit (mm)", continuous_update=False),
-    k=widgets.IntSlider(value=20, min=6, max=160, step=2, description="k",
-                        continuous_update=False),
-)
+# %%
+ok6 = counts[counts["success"]]
+fig6 = pd.DataFrame({r: {"paper: kept / inliers": c6["selected_fraction"],
+                         "ours: kept / inliers": (ok6[f"n_{r}"] / ok6["n_inliers"]).mean(),
+                         "runs falling back to all inliers": int(ok6[f"fallback_{r}"].sum())}
+                     for r in (primary, "sandwich", "as printed", "exact")}).T
+fig6["difference"] = fig6["ours: kept / inliers"] - fig6["paper: kept / inliers"]
+fig6
 
 # %% [markdown]
-# ## 8 · Errata and deviations
+# With the per-point start test a 6-point start that beats the all-inlier score is found in
+# every run, so no reading falls back to all inliers except the literal one, which always does.
+#
+# ## Scorecard
+
+# %%
+rows = E.evaluate(claims, runs, counts, proto)
+card = scorecard(rows)
+card[["claim", "ours", "status", "note"]]
+
+# %%
+# NBVAL_CHECK_OUTPUT
+for r in rows:
+    print(r.claim, r.status.value)
+if not QUICK:   # the same configuration as make repro: the same statuses as the REPORT
+    assert {c["claim"]: c["status"] for c in _card["claims"]} == \
+        {r.claim: r.status.value for r in rows}
+
+# %% [markdown]
+# **How the statuses moved.** Fig. 5 was `reproduced` in the previous report through the
+# *sandwich* reading, picked after seeing which reading came closest, with the simulator's true
+# noise and an uncorrected p. Under the reading fixed from the text (*pooled*), Fig. 5 is
+# decided by the cells above; the sandwich reading is now one of eight exploratory comparisons,
+# and its estimated-noise twin — what a real system could compute — is shown beside it.
+#
+# ## Explore
+#
+# The selection's trade-off: how many points a reading drops, and what that does to the
+# attitude error — at the printed noise (1 mm unit) and at the pixel reading (0.01 mm), where
+# the flip ambiguity disappears. Each setting shows a few dozen cached runs (`E.EXPLORE_RUNS`,
+# reduced from 300 so a change redraws in under 0.5 s; the title says so). The tolerance slider affects only the
+# *tolerance* reading.
+
+# %%
+n_cached = E.warm_explore_cache()   # every setting the controls can reach: a change only draws
+explore = panel(
+    E.explore_figure,
+    reading=dropdown("selection reading", list(E.READINGS), primary),
+    noise_unit_mm=dropdown("noise unit", E.NOISE_UNITS, 1.0),
+    tolerance_pct=float_slider("tolerance reading: min. decrease (%)", *E.TOLERANCE_PCT),
+    show_ml=toggle("show ML (weighted) reference", True),
+)
+
+# %%
+# NBVAL_CHECK_OUTPUT
+print("settings cached for the panel:", n_cached)
+
+# %% [markdown]
+# ## Errata and deviations
 #
 # * **Equations lost.** Eqs. (1)–(19) were images; the projection, the Fisher information and
 #   the CRLB are re-derived above and checked (finite differences, constrained vs minimal form,
 #   Monte Carlo).
-# * **The selection rule as printed cannot select** (additivity of Fisher information, §4.4).
-#   We report four readings and name the one that reproduces the paper (*sandwich*); choosing it
-#   is a reading of an ambiguous text, not a tuned parameter — the others are shown beside it.
+# * **The selection rule as printed cannot select** (additivity of Fisher information). The
+#   primary reading (*pooled*) was fixed from the text before the run; the other four readings
+#   are exploratory, with Holm-adjusted p-values.
 # * **Units of the noise.** "Variance 0.02 / 0.1 / 3 mm²" on a 10 mm focal length puts
-#   σ = 0.14–0.32 mm on a target image ≈ 2 mm wide (σ for gross errors 1.7 mm, comparable to
-#   the whole image). We keep the printed values (`noise_unit_mm = 1`). If the authors meant
-#   px² with a ≈10 µm pixel (`noise_unit_mm = 0.01`), all errors shrink 100× and the planar
-#   ambiguity disappears (Explore: "unit").
-# * **"22 m²" plane.** Read as a 2 m × 2 m square (likely a lost "×"), placed at $Z_t = -1$ m
-#   ("1 m from the target"), facing the camera.
+#   σ = 0.14–0.32 mm on a target image ≈ 2 mm wide. We keep the printed values
+#   (`noise_unit_mm = 1`). If the authors meant px² with a ≈ 10 µm pixel, all errors shrink
+#   100× and the flip ambiguity disappears (Explore: noise unit).
+# * **"22 m²" plane.** Read as 2 m × 2 m, at $Z_t = -1$ m, facing the camera.
 # * **Unstated settings (ours):** Euler sequence x-y-z; inlier threshold
-#   $\sqrt{\chi^2_{2,0.99}\cdot 0.1}$; acceptance ratio 60 %; 500 RANSAC draws; 50 CRLB start
-#   draws; CRLB weights all 1; order of adding points random (each reading draws from its own
-#   random stream); unweighted LM after selection.
-# * **RANSAC refit.** After acceptance the pose is re-estimated from all inliers and the inlier
-#   test repeated once (§2.2's general description); the refit takes the better of the DLT
-#   start and the two IPPE solutions (`cv2.solvePnPGeneric`) to resolve the planar ambiguity
-#   where the data allow.
-# * **Attitude error** is the angle of $\hat R R^\top$ (degrees); position error $|\hat t - t|$.
+#   $\sqrt{\chi^2_{2,0.99}\cdot 0.1}$ mm; acceptance 60 %; 500 RANSAC draws; 50 CRLB start
+#   draws; CRLB weights all 1; random order of adding points; unweighted LM after selection.
+# * **RANSAC refit.** After acceptance the pose is re-estimated from all inliers (best of the
+#   DLT and both IPPE planar solutions, each LM-refined) and the inlier test repeated once.
+# * **OpenCV on this target (benchmark).** At the printed noise, `cv2.solvePnPRansac` with
+#   SQPnP (or EPnP) lands on the mirrored planar pose in most scenes — also without RANSAC on
+#   the clean points, so the threshold (same mm units as the image, no pixel/normalised mix-up)
+#   is not the cause. OpenCV's IPPE fails for coplanar points off the object's $Z = 0$ plane;
+#   `eotrack.pose.ippe_poses` solves in the plane's own frame, and `ransac_pose_opencv` now
+#   disambiguates by default. Numbers: `benchmarks/bench_ransac_crlb_pose.py`.
 
 # %% [markdown]
-# ## 9 · Beyond the paper
+# ## Beyond the paper
 #
-# ### 9.1 Estimator efficiency: Monte Carlo covariance vs the CRLB
+# ### Estimator efficiency: Monte Carlo covariance vs the CRLB
 #
 # Fixed geometry (the paper's scene, gross errors removed), noise at the printed level and
 # 100× smaller. *ML* = weighted Levenberg–Marquardt; *unweighted LS* is bounded not by the
 # CRLB but by its own sandwich covariance ("LS bound").
 
 # %%
-fig, ax = plt.subplots()
-E.plot_efficiency(eff, ax=ax)
-plt.show()
+eff = E.efficiency_experiment(n_mc=40 if QUICK else st.n_mc_efficiency, scenario=sc,
+                              runner=runner)
+ax = E.plot_efficiency(eff)
 eff
 
+# %%
+ml_lin = eff[(eff["noise unit (mm)"] == 0.01) & (eff["estimator"] == "ML (from truth)")].iloc[0]
+assert 0.75 < ml_lin["att RMS / CRLB"] < 1.25 and 0.75 < ml_lin["pos RMS / CRLB"] < 1.25
+
 # %% [markdown]
-# In the small-noise regime the ML pose attains the CRLB (ratio ≈ 1) and unweighted least
-# squares sits at its own, larger bound — this is the gap a selection rule could try to close,
-# and weighting closes it completely. At the printed noise level the ML pose started at the
-# truth is still efficient, but started from a linear solution it lands in the mirrored planar
-# solution often enough to triple the attitude RMS: there the CRLB says little about the
-# actual error.
+# In the small-noise regime the ML pose attains the CRLB and unweighted least squares sits at
+# its own, larger bound — the gap a selection rule could try to close, and weighting closes
+# completely. At the printed noise, started from a linear solution, ML lands in the mirrored
+# planar solution often enough that the CRLB says little about the actual error.
 #
-# ### 9.2 Budgeted selection: best k points vs random k
+# ### Budgeted selection: best k points vs random k
 #
 # If computation limits the number of points to k, which k? Greedy optimal design on the
-# Fisher information: D-optimal maximises $\log\det J(S)$, A-optimal minimises the paper's
-# weighted CRLB sum; each step evaluates every candidate with a rank-2 update. Pixel reading of
-# the noise (small-noise regime), weighted LM from the all-point pose.
+# Fisher information (D-optimal: maximise $\log\det J(S)$; A-optimal: minimise the paper's
+# weighted CRLB sum), pixel reading of the noise, weighted LM from the all-point pose.
 
 # %%
-bud = rep.data["budget"]
-fig, ax = plt.subplots()
-E.plot_budget(bud, ax=ax)
-plt.show()
+bud = E.budget_experiment(n_runs=6 if QUICK else st.n_runs_budget, scenario=sc, runner=runner)
+ax = E.plot_budget(bud)
 bud.pivot(index="k", columns="method", values="att_median_deg")
 
 # %% [markdown]
-# With 8–30 points the designed subsets are about twice as accurate as random ones (spread-out
-# points with small noise); from ≈100 points on, the choice hardly matters. Selection times
-# (median, ms) — machine dependent:
+# This is the constructive version of the paper's idea: with a *budget* the question "which
+# points?" has a real answer, and the designed subsets beat random ones at small k; from about
+# a hundred points on the choice hardly matters.
+#
+# ## Key points
+#
+# * The Fisher information of a pose from N points is $\sum_i G_i^\top G_i/\sigma_i^2$; its
+#   inverse bounds the covariance of any unbiased pose, and the ML pose attains it at small
+#   noise.
+# * Information is additive, so adding a point never raises any CRLB: a rule "keep a point if
+#   it lowers the CRLB" keeps everything.
+# * A selection rule can only drop points through something the CRLB does not contain: an
+#   estimated noise level, an unweighted solver, or a budget/stopping rule.
+# * If per-point noise is known, weight the points (ML) rather than dropping them.
+# * A small, distant plane has two nearly equally good poses; check solvers for the flip, not
+#   only their speed.
+# * Fix the reading and the test before the run; correct exploratory comparisons for their
+#   number (Holm).
+#
+# ## Exercises
+#
+# **1 (derivation).** Derive $J_1 = G_1^\top G_1/\sigma^2$ for one point in the 6-parameter
+# form and evaluate it for the point, pose and noise given in the question below. Why is its
+# rank 2?
 
-# %% tags=["nbval-ignore-output"]
-print(bud.pivot(index="k", columns="method", values="select_ms").round(2))
-X_in, u_in = scene.points[res.inliers], scene.pixels[res.inliers]
-t0 = time.perf_counter()
-for _ in range(100):
-    pose_crlb(X_in, res.R, res.t, sc.K, scene.sigma[res.inliers])
-print(f"CRLB of {len(X_in)} points: {(time.perf_counter() - t0) * 10:.3f} ms")
-t0 = time.perf_counter()
-for _ in range(20):
-    cv2.solvePnPRansac(X_in, u_in, sc.K, None, flags=cv2.SOLVEPNP_SQPNP)
-print(f"cv2.solvePnPRansac (SQPnP): {(time.perf_counter() - t0) * 50:.2f} ms")
+# %%
+print(get_checker("ransac_crlb_pose.1").question)
+answer = None  # your 6×6 array here
+if answer is not None:
+    display(check("ransac_crlb_pose.1", answer))
+
+# %% [markdown]
+# **2 (computation).** With the library, compute $\mathrm{tr}\,\mathrm{CRLB}(S_6) /
+# \mathrm{tr}\,\mathrm{CRLB}(S_{all})$ for the scene named in the question; then show that the
+# trace never rises along the nested sets $S_6 \subset S_7 \subset \dots$ (hint:
+# `information_monotonicity`).
+
+# %%
+print(get_checker("ransac_crlb_pose.2").question)
+answer = None  # your number here
+if answer is not None:
+    display(check("ransac_crlb_pose.2", answer))
+
+# %% [markdown]
+# **3 (design).** Design a selection rule that *can* drop points: add points in a given order
+# and stop when the exact CRLB score is within a fraction `frac` of the all-point score. Write
+# `points_needed(points, R, t, K, sigma, frac)`, then test it: how many points does it keep for
+# `frac = 0.1`, and is the pose from them worse than from all points?
+
+# %%
+def points_needed(points, R, t, K, sigma, frac):
+    """Your rule: the fewest leading points within (1 + frac) of the all-point score."""
+    return None
+
+
+if points_needed(*[None] * 6) is not None:
+    display(check("ransac_crlb_pose.3", points_needed))
+
+# %% [markdown]
+# **4 (exploration).** In the Explore panel, set the noise unit to 0.01 mm and the reading to
+# *pooled*. What mean attitude-error ratio (CRLB selection / RANSAC) does the title show? Why
+# is it so different from the 1 mm case?
+
+# %%
+answer = None  # the ratio in the title
+if answer is not None:
+    display(check("ransac_crlb_pose.4", answer))
+
+# %% [markdown]
+# **5 (critique).** Why can the rule as printed never drop a point? **6 (critique).** Which
+# reading did we pre-register, and why from the text? Answer with a letter; the options are in
+# the questions.
+
+# %%
+for k in (5, 6):
+    print(f"{k}.", get_checker(f"ransac_crlb_pose.{k}").question)
+answer5 = None  # "a", "b", "c" or "d"
+answer6 = None
+if answer5 is not None:
+    display(check("ransac_crlb_pose.5", answer5))
+if answer6 is not None:
+    display(check("ransac_crlb_pose.6", answer6))
+
+# %% [markdown]
+# Worked solutions: `notebooks/solutions/06_ransac_crlb_pose_solutions.ipynb`.
+#
+# ## References
+#
+# 1. Ning M., Zhang S., Zhang H. Robust visual navigation of non-cooperative spacecraft with
+#    active feature selection. *Aerospace Shanghai* 33(6):136–141, 2016.
+#    DOI [10.19328/j.cnki.1006-1630.2016.06.020](https://doi.org/10.19328/j.cnki.1006-1630.2016.06.020)
+# 2. Fischler M. A., Bolles R. C. Random sample consensus. *Commun. ACM* 24(6):381–395, 1981.
+#    DOI [10.1145/358669.358692](https://doi.org/10.1145/358669.358692)
+# 3. Hartley R., Zisserman A. *Multiple View Geometry in Computer Vision*, 2nd ed. Cambridge
+#    University Press, 2004. DOI [10.1017/CBO9780511811685](https://doi.org/10.1017/CBO9780511811685)
+# 4. Kay S. M. *Fundamentals of Statistical Signal Processing: Estimation Theory*. Prentice
+#    Hall, 1993 (ch. 3, the CRLB).
+# 5. Stoica P., Ng B. C. On the Cramér–Rao bound under parametric constraints. *IEEE Signal
+#    Process. Lett.* 5(7):177–179, 1998. DOI [10.1109/97.700921](https://doi.org/10.1109/97.700921)
+# 6. Terzakis G., Lourakis M. A consistently fast and globally optimal solution to the
+#    perspective-n-point problem (SQPnP). *ECCV* 2020.
+#    DOI [10.1007/978-3-030-58452-8_28](https://doi.org/10.1007/978-3-030-58452-8_28)
+# 7. Collins T., Bartoli A. Infinitesimal plane-based pose estimation (IPPE). *Int. J. Comput.
+#    Vis.* 109:252–286, 2014. DOI [10.1007/s11263-014-0725-5](https://doi.org/10.1007/s11263-014-0725-5)
+# 8. Lepetit V., Moreno-Noguer F., Fua P. EPnP: an accurate O(n) solution to the PnP problem.
+#    *Int. J. Comput. Vis.* 81:155–166, 2009. DOI [10.1007/s11263-008-0152-6](https://doi.org/10.1007/s11263-008-0152-6)
+# 9. Holm S. A simple sequentially rejective multiple test procedure. *Scand. J. Stat.*
+#    6(2):65–70, 1979 (JSTOR 4615733).
+# 10. Wilcoxon F. Individual comparisons by ranking methods. *Biometrics Bulletin*
+#     1(6):80–83, 1945. DOI [10.2307/3001968](https://doi.org/10.2307/3001968)
+# 11. White H. A heteroskedasticity-consistent covariance matrix estimator and a direct test for
+#     heteroskedasticity. *Econometrica* 48(4):817–838, 1980.
+#     DOI [10.2307/1912934](https://doi.org/10.2307/1912934)
+# 12. Pukelsheim F. *Optimal Design of Experiments*. SIAM, 2006.
+#     DOI [10.1137/1.9780898719109](https://doi.org/10.1137/1.9780898719109)

@@ -7,6 +7,8 @@ import pytest
 from eotrack.experiments import ransac_crlb_pose as exp
 from eotrack.montecarlo import TrialRunner
 from eotrack.repro import Status, load_claims
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 # What we measured with reproduce(quick=True) (60 runs for Figs. 4-5, 30 for Fig. 6).
 EXPECTED = {
@@ -179,3 +181,21 @@ def test_scene_drawing_and_ellipsoid():
 def test_ransac_failure_is_a_reported_outcome():
     out = exp.run_trial(np.random.default_rng(1), exp.Scenario(), exp.Settings(), 40, 0.9)
     assert out["success"] is False and out["ransac_draws"] == exp.Settings().max_draws
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.lists(st.floats(0.0, 1.0), min_size=1, max_size=12))
+def test_holm_properties(p):
+    adj = exp.holm(p)
+    p = np.asarray(p)
+    assert np.all(adj >= p - 1e-15) and np.all(adj <= 1.0)
+    order = np.argsort(p, kind="stable")
+    assert np.all(np.diff(adj[order]) >= -1e-15)       # monotone in the raw p
+    assert np.all(adj <= np.minimum(1.0, p * len(p)) + 1e-15)   # never above Bonferroni
+
+
+def test_warm_cache_covers_every_control_value():
+    n = exp.warm_explore_cache()
+    lo, hi, step, _ = exp.TOLERANCE_PCT
+    n_tol = len(np.arange(lo, hi + step / 2, step))
+    assert n == len(exp.NOISE_UNITS) * (len(exp.READINGS) + n_tol)

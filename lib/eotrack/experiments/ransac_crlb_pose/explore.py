@@ -20,13 +20,17 @@ from eotrack.validation import check_choice, check_int, check_positive
 from .scenario import READINGS, SLUG, Scenario, Settings, make_scene, pose_errors
 from .trials import select_and_refit
 
-__all__ = ["EXPLORE_RUNS", "NOISE_UNITS", "explore_figure", "explore_runs", "explore_selection"]
+__all__ = ["EXPLORE_RUNS", "NOISE_UNITS", "TOLERANCE_PCT", "explore_figure", "explore_runs",
+           "explore_selection", "warm_explore_cache"]
 
 #: Runs per setting inside the widget (the reproduction uses 300; said on the figure).
 EXPLORE_RUNS = 24
 #: Noise-unit choices (mm): as printed, and the pixel reading (10 µm pixel).
 NOISE_UNITS = {"1 mm (variances in mm², as printed)": 1.0,
                "0.01 mm (variances in px², 10 µm pixel)": 0.01}
+
+#: The tolerance slider's values (%): min, max, step, default.
+TOLERANCE_PCT = (0.0, 5.0, 0.5, 1.0)
 
 
 @lru_cache(maxsize=8)
@@ -52,7 +56,7 @@ def explore_runs(noise_unit_mm: float, n_runs: int = EXPLORE_RUNS, seed: int = 3
     return tuple(out)
 
 
-@lru_cache(maxsize=128)
+@lru_cache(maxsize=256)
 def explore_selection(noise_unit_mm: float, reading: str, tolerance: float = 0.01
                       ) -> tuple[np.ndarray, np.ndarray]:
     """Attitude error (deg) and kept fraction per cached run for one reading (cached)."""
@@ -66,6 +70,23 @@ def explore_selection(noise_unit_mm: float, reading: str, tolerance: float = 0.0
         att.append(pose_errors(s["R"], s["t"], r["scene"])[1])
         frac.append(s["selected"].mean())
     return np.array(att), np.array(frac)
+
+
+def warm_explore_cache() -> int:
+    """Compute every (noise unit, reading, tolerance) the panel can ask for; return the count.
+
+    After this, every control change only draws (no selection, no RANSAC).
+    """
+    lo, hi, step, _ = TOLERANCE_PCT
+    n = 0
+    for unit in NOISE_UNITS.values():
+        for name in READINGS:
+            explore_selection(unit, name, Settings().tolerance)
+            n += 1
+        for pct in np.arange(lo, hi + step / 2, step):
+            explore_selection(unit, "tolerance", float(pct) / 100)
+            n += 1
+    return n
 
 
 def explore_figure(reading: str = "pooled", noise_unit_mm: float = 1.0,
