@@ -225,7 +225,7 @@ def _selected(request) -> list[str]:
 
 
 @pytest.fixture(scope="module")
-def runs(request, browser, lab) -> dict[str, Run]:
+def runs(request, browser, lab, run_rows) -> dict[str, Run]:
     """Open the selected notebooks and run all their cells, PARALLEL tabs at a time."""
     queue = [Run(n) for n in _selected(request)]
     active: list[Run] = []
@@ -261,8 +261,10 @@ def runs(request, browser, lab) -> dict[str, Run]:
                     r.error = f"{r.name}: still running after {RUN_TIMEOUT_S:.0f} s ({st})"
                 active.remove(r)
                 done[r.name] = r
-    print(f"\n[browser] ran {len(done)} notebook(s) in {time.perf_counter() - t_all:.0f} s "
-          f"({PARALLEL} tab(s) at a time)")
+    wall = time.perf_counter() - t_all
+    print(f"\n[browser] ran {len(done)} notebook(s) in {wall:.0f} s ({PARALLEL} tab(s) at a time)")
+    run_rows.extend({"notebook": r.name, "run_s": r.seconds} for r in done.values())
+    run_rows.append({"notebook": f"(all, {PARALLEL} tabs at a time)", "run_s": wall})
     yield done
     for r in done.values():
         if r.page is not None:
@@ -375,23 +377,60 @@ def test_notebook_runs_and_panels_redraw(notebook, runs, latency_rows):
     assert not problems, f"{notebook}:\n  " + "\n  ".join(problems)
 
 
-@pytest.mark.skipif(ROUNDTRIP is None, reason="no notebook to open")
-def test_open_save_keeps_files(browser, lab, tmp_path):
-    """Ctrl+S on a notebook stored by .ci/execute_notebooks.py changes neither file of the pair."""
+PANEL_TWIN = """\
+# %% [markdown]
+# # A panel, stored with its widget state
+
+# %%
+import matplotlib.pyplot as plt
+
+from eotrack.notebook import float_slider, panel, toggle
+
+
+def draw(s, flip):
+    fig, ax = plt.subplots(figsize=(3, 2))
+    ax.plot([0, 1], [0, -s if flip else s])
+    return fig
+
+
+explore = panel(draw, s=float_slider("s (m)", 0.0, 1.0, 0.005, 0.5), flip=toggle("flip", False))
+"""
+
+
+@pytest.mark.parametrize("which", ["stored", "panel"])
+def test_open_save_keeps_files(which, browser, lab, monkeypatch):
+    """Ctrl+S on a notebook stored by .ci/execute_notebooks.py changes neither file of the pair.
+
+    ``stored``: the repository's first notebook, written as execute_notebooks.py writes it
+    (without re-running it); ``panel``: a small solutions notebook with a panel, executed by
+    execute_notebooks.py, so its saved widget state is part of the round trip.
+    """
+    if which == "stored" and ROUNDTRIP is None:
+        pytest.skip("no notebook to open")
     ex = _ci_module("execute_notebooks")
-    repo = lab.work / "roundtrip"
-    (repo / "notebooks" / "py").mkdir(parents=True)
+    repo = lab.work / f"roundtrip-{which}"
+    repo.mkdir()
     shutil.copy(ROOT / "pyproject.toml", repo / "pyproject.toml")
-    ipynb = repo / "notebooks" / ROUNDTRIP.name
-    py = ex.pair_of(ipynb)
-    shutil.copy(ROUNDTRIP, ipynb)
-    shutil.copy(ex.pair_of(ROUNDTRIP), py)
-    # store it as `.ci/execute_notebooks.py` would (without re-executing: same writer)
-    nb = ex.load_inputs(py)
-    ex.save_pair(ex.stable_widget_ids(ex.normalise(nb)), ipynb, repo)
+    if which == "stored":
+        ipynb = repo / "notebooks" / ROUNDTRIP.name
+        py = ex.pair_of(ipynb)
+        py.parent.mkdir(parents=True)
+        shutil.copy(ROUNDTRIP, ipynb)
+        shutil.copy(ex.pair_of(ROUNDTRIP), py)
+        nb = ex.load_inputs(py)
+        ex.save_pair(ex.stable_widget_ids(ex.normalise(nb)), ipynb, repo)
+    else:
+        ipynb = repo / "notebooks" / "solutions" / "99_panel_solutions.ipynb"
+        py = ex.pair_of(ipynb)
+        py.parent.mkdir(parents=True)
+        py.write_text(PANEL_TWIN)
+        monkeypatch.delenv("MPLBACKEND", raising=False)  # the kernel must plot inline
+        ex.execute(ipynb.stem, py, repo)
+        assert ex.WIDGET_STATE in ipynb.read_text(), "no widget state stored"
     before = {f: f.read_bytes() for f in (ipynb, py)}
     mtime = ipynb.stat().st_mtime_ns
-    page = _open(browser, lab, f"roundtrip/notebooks/{ROUNDTRIP.name}", "roundtrip")
+    rel = ipynb.relative_to(lab.work).as_posix()
+    page = _open(browser, lab, rel, f"roundtrip-{which}")
     try:
         page.wait_for_timeout(2000)
         dirty_on_open = page.evaluate(JS_STATUS)["dirty"]
