@@ -63,7 +63,7 @@ lab: setup
 
 ## the static HTML book of the stored notebooks (no re-execution; warnings fail) -> build/book
 book: setup
-	$(PY) -m sphinx -b html -W --keep-going -q -c notebooks/_book . build/book
+	$(PY) -m sphinx -b html -E -a -W --keep-going -q -c notebooks/_book . build/book
 
 ## side-by-side timings against the peer libraries
 bench: setup

@@ -35,15 +35,13 @@
 # %%
 from eotrack.exercises import check, exercise_ids
 from eotrack.notebook import setup_notebook, versions
-from eotrack.repro import papers_repro_dir
 from eotrack.repro.collection import collection_notebooks, collection_scorecard
 from IPython.display import Markdown, display
 
 setup_notebook()
 notebooks = collection_notebooks()
 scores = collection_scorecard()
-repro = papers_repro_dir()
-versions()
+print("versions:", ", ".join(f"{k} {v}" for k, v in versions().items()))
 
 # %% [markdown]
 # ## Learning path
@@ -125,7 +123,8 @@ print("every notebook has a title:", bool((notebooks["title"] != notebooks["stem
 #
 # **Explore.** Each notebook's *Explore* section has a panel of sliders, toggles and menus
 # over the parameters that carry the method's trade-off. The figure redraws when a control
-# is released; the panels need a live kernel (JupyterLab), so the book shows a note instead.
+# is released. Redrawing needs a live kernel (JupyterLab): the book shows each panel with the
+# figure at its stored setting.
 #
 # **Check exercises.** Each notebook ends with at least four exercises — a derivation, a
 # computation with the library, an exploration with the widgets, a critique of the paper.
