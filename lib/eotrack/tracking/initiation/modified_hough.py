@@ -39,13 +39,13 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from eotrack.validation import check_int, check_positive
+from eotrack.validation import as_finite_array, check_int, check_positive
 
 from .base import Frame, Track, validate_frames
 from .gating import TrackHandOff, canonical_order, check_velocity_gate
 from .pairs import PointGrid, cv_fit_batch, greedy_disjoint
 
-__all__ = ["ModifiedHoughInitiator", "ModifiedHoughRun", "line_through_points"]
+__all__ = ["ModifiedHoughInitiator", "ModifiedHoughRun", "line_through_points", "pair_parameters"]
 
 _BITS = 32
 _MAX_M = 16
@@ -197,6 +197,39 @@ class ModifiedHoughInitiator:
             raise ValueError(f"t_b must be later than t_a, got {t_a} and {t_b}")
         rho, theta, v, s = _pair_params(a, b, float(t_b) - float(t_a))
         return float(rho[0]), float(np.degrees(theta[0])), float(v[0]), int(s[0])
+
+
+def pair_parameters(xy_a: np.ndarray, xy_b: np.ndarray, dt: float | np.ndarray,
+                    origin_px: tuple[float, float] = (0.0, 0.0),
+                    ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Hough parameters of the motions ``xy_a → xy_b`` (rows), eq. (1) of Xu & Wang.
+
+    Parameters
+    ----------
+    xy_a, xy_b
+        ``(n, 2)`` start and end positions (pixels); no row may have ``xy_a == xy_b``.
+    dt
+        Time from a to b (s, > 0), scalar or ``(n,)``.
+    origin_px
+        Origin of ρ.
+
+    Returns
+    -------
+    rho, theta, v, s : numpy.ndarray
+        ``ρ = x cos θ + y sin θ`` about the origin (pixels), θ ∈ [0, π) (radians), speed
+        (pixels per second) and direction ``s = ±1`` along ``u(θ) = (sin θ, −cos θ)``.
+    """
+    a = as_finite_array(xy_a, "xy_a", shape=(None, 2))
+    b = as_finite_array(xy_b, "xy_b", shape=(None, 2))
+    if len(a) != len(b):
+        raise ValueError(f"xy_a and xy_b must have the same length, got {len(a)} and {len(b)}")
+    d = np.asarray(dt, dtype=float)
+    if not np.all(np.isfinite(d)) or np.any(d <= 0):
+        raise ValueError("dt must be finite and > 0")
+    if np.any(np.all(a == b, axis=1)):
+        raise ValueError("xy_a and xy_b coincide in some row: no line through them")
+    o = np.asarray(origin_px, float)
+    return _pair_params(a - o, b - o, d)
 
 
 def _cv_residuals(t: np.ndarray, xy: np.ndarray) -> np.ndarray:

@@ -1,0 +1,95 @@
+"""Exercises of notebook 04 (Xu & Wang 2016, modified Hough track initiation, with logic and
+classic Hough baselines).
+
+Expected values are computed with the library on first use; nothing is typed in.
+
+1. derivation — the χ² disc of the third point: the variance factor ``c`` of a triplet (a
+   function of the three frame times);
+2. computation — the analytic chance tracks of the χ² 3-of-4 rule in a seeded clutter-only
+   scene;
+3. exploration — the paper's procedure in the Explore panel: false tracks per scene at 50
+   clutter points per frame (6-neighbourhood, ρ from the image corner);
+4. critique — why the paper's 6-neighbourhood loses track 2 of the nominal scene;
+5. critique — the angle constraint at the comparison's 10 px gate.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from eotrack.exercises import Choice, FunctionAnswer, NumericAnswer, register
+
+__all__: list[str] = []
+
+
+def _disc_factor_reference(t1: float, t2: float, t3: float, which: int) -> float:
+    """``|w|² / w_which²`` for the constant-velocity contrast ``w ∝ (t2 − t3, t3 − t1, t1 − t2)``
+    of three hits at ``t1 < t2 < t3`` (``which`` ∈ {0, 1, 2}: the hit looked up)."""
+    w = np.array([t2 - t3, t3 - t1, t1 - t2], dtype=float)
+    return float(w @ w / w[int(which)] ** 2)
+
+
+def _ex1_inputs() -> list[tuple]:
+    return [(0.0, 1.0, 2.0, 1), (0.0, 1.0, 3.0, 1), (0.0, 1.0, 3.0, 0), (0.0, 2.0, 3.0, 2),
+            (0.0, 0.7, 2.1, 1), (1.0, 1.5, 4.0, 0), (0.0, 1.0, 2.0, 2)]
+
+
+def _ex2_expected() -> float:
+    from eotrack.experiments import track_init_hough as TH
+
+    cfg = TH.PlantedConfig()
+    scene = TH.planted_scene(np.random.default_rng(2016), cfg, clutter_per_frame=30.0,
+                             n_objects=0, n_stars=0)
+    return TH.chi2_chance_tracks(scene, v_min=cfg.v_gate_px_s[0], v_max=cfg.v_gate_px_s[1],
+                                 sigma_px=cfg.sigma_px, alpha=cfg.alpha, width=cfg.width_px)
+
+
+def _ex3_expected() -> float:
+    from eotrack.experiments import track_init_hough as TH
+
+    res = TH.explore_results(50.0, 6, False, False)
+    return float(np.mean([r[2]["false"] for r in res]))
+
+
+register("track_init_hough.1", FunctionAnswer(
+    "Derivation. Three hits at t1 < t2 < t3 pass the χ² test when the hit you look up lies in a "
+    "disc of area π χ²₂(1−α) σ² c around the point predicted from the other two. Write "
+    "disc_factor(t1, t2, t3, which) returning c for the hit `which` (0, 1 or 2) being looked up.",
+    reference=_disc_factor_reference, inputs=_ex1_inputs, rtol=1e-9,
+    hint="write the least-squares residual of three points as one contrast wᵀx with Σw = 0 and "
+         "Σw t = 0; RSS = (wᵀx)²/|w|², and x_which − prediction = (wᵀx)/w_which"))
+
+register("track_init_hough.2", NumericAnswer(
+    "Computation. Draw the clutter-only planted scene planted_scene(default_rng(2016), "
+    "PlantedConfig(), clutter_per_frame=30, n_objects=0, n_stars=0) and compute the expected "
+    "number of chance tracks of the χ² 3-of-4 rule in it (the planted scenes' gate, σ and α).",
+    expected=_ex2_expected, rtol=1e-2,
+    hint="chi2_chance_tracks with the PlantedConfig's v_gate_px_s, sigma_px, alpha and "
+         "width_px (depletion on, the default)"))
+
+register("track_init_hough.3", NumericAnswer(
+    "Exploration. In the Explore panel, set 50 clutter points per frame, the paper's literal "
+    "procedure (verified off), the 6-neighbourhood and ρ from the image corner. What is the mean "
+    "number of false tracks per scene over the panel's scenes?",
+    expected=_ex3_expected, rtol=1e-2,
+    hint="read it from the left panel's title, or average the 'false' scores of "
+         "explore_results(50.0, 6, False, False)"))
+
+register("track_init_hough.4", Choice(
+    "Critique. With the paper's 6-neighbourhood the nominal scene loses track 2 (seen in frames "
+    "1, 2 and 4). Why? (a) its two pair cells differ in two of (ρ, θ, v), so they are not "
+    "6-neighbours and neither cell reaches m − 1 = 3 frames; (b) its speed is outside the "
+    "velocity gate; (c) missing frame 3 breaks the 3/4 rule; (d) a residual star took one of "
+    "its detections.",
+    options=["a", "b", "c", "d"], answer="a",
+    hint="compute cell_of for its pairs (frame 1→2 and 2→4) and compare the cell indices"))
+
+register("track_init_hough.5", Choice(
+    "Critique. At the comparison's 10 px prediction gate with v_min = 10 px/s the angle-"
+    "constrained logic gives exactly the same tracks as logic 3/4. Which statement explains it? "
+    "(a) the angle test is applied after confirmation; (b) any point within 10 px of a "
+    "prediction at least 10 px ahead of the last point makes an angle above 90° there; "
+    "(c) clutter points never fall in the gate; (d) the angle constraint only acts for 2/3.",
+    options=["a", "b", "c", "d"], answer="b",
+    hint="draw the last point, the prediction at distance ≥ v_min·Δt and the gate circle: where "
+         "can a point of the circle lie relative to the line through the last two points?"))

@@ -1,0 +1,355 @@
+"""Figures of the Xu & Wang reproduction: the paper's Figs. 2–3, the (ρ, θ) voting drawn from
+code, the method comparison, the chance rates, the planted scenes and the Explore panel."""
+
+from __future__ import annotations
+
+import math
+from functools import cache
+
+import matplotlib.pyplot as plt
+import numpy as np
+import pandas as pd
+
+from eotrack.plotting import get_ax
+from eotrack.tracking.initiation.base import Track, validate_frames
+from eotrack.tracking.initiation.modified_hough import ModifiedHoughInitiator, pair_parameters
+from eotrack.tracking.initiation.pairs import gated_pairs
+
+from .chance import chi2_chance_tracks
+from .scenario import PlantedConfig, Scene, XuConfig, planted_scene, score_tracks, xu_config
+
+__all__ = [
+    "EXPLORE_CLUTTER",
+    "EXPLORE_SCENES",
+    "explore_results",
+    "plot_angle_constraint",
+    "plot_chance_check",
+    "plot_comparison",
+    "plot_explore",
+    "plot_fig3",
+    "plot_logic_false_tracks",
+    "plot_planted_summary",
+    "plot_rho_theta_votes",
+    "plot_scene_tracks",
+    "plot_xu_frames",
+]
+
+
+def plot_xu_frames(scene: Scene, ax: plt.Axes | None = None) -> plt.Axes:
+    """All candidates of the four frames in one image (like the paper's Fig. 2)."""
+    ax = get_ax(ax, figsize=(5.2, 5.2))
+    ax.plot(*scene.stars_px.T, "o", mfc="none", mec="0.75", ms=9, label="catalogue stars")
+    cols = plt.cm.viridis(np.linspace(0, 0.9, len(scene.frames)))
+    for k, ((_, xy), c) in enumerate(zip(scene.frames, cols)):
+        ax.plot(*xy.T, "+", color=c, ms=7, label=f"frame {k + 1} candidates")
+    _image_axes(ax, scene)
+    ax.set_title("Candidates after star removal (4 frames)")
+    ax.legend(fontsize=7, loc="upper right")
+    return ax
+
+
+def _image_axes(ax: plt.Axes, scene: Scene, width: float = 512) -> None:
+    ax.set_xlim(0, width)
+    ax.set_ylim(width, 0)
+    ax.set_aspect("equal")
+    ax.set_xlabel("x (px)")
+    ax.set_ylabel("y (px)")
+
+
+def plot_fig3(scene: Scene, tracks: list[Track], ax: plt.Axes | None = None) -> plt.Axes:
+    """Fig. 3: the extracted tracks (lines through their detections) over the candidates."""
+    ax = get_ax(ax, figsize=(5.2, 5.2))
+    allxy = np.concatenate([xy for _, xy in scene.frames])
+    ax.plot(*allxy.T, ".", color="0.7", ms=4, label="candidates")
+    fr = validate_frames(scene.frames)
+    for i, tr in enumerate(tracks):
+        p = tr.positions(fr)
+        ids = {int(scene.labels[f][d]) for f, d in tr.hits}
+        name = (f"track {next(iter(ids)) + 1}" if len(ids) == 1 and min(ids) >= 0
+                else f"false track {i + 1}")
+        line = ax.plot(*p.T, "-o", ms=4, label=f"{name}: frames "
+                       f"{','.join(str(f + 1) for f in tr.frame_indices)}; conf. {tr.confirmed_at + 1}")
+        ax.annotate(name.replace("track ", "T"), p[-1], xytext=(4, 4),
+                    textcoords="offset points", color=line[0].get_color(), fontsize=8)
+    _image_axes(ax, scene)
+    ax.set_title(f"Fig. 3 — extracted tracks ({len(tracks)})")
+    ax.legend(fontsize=6.5, loc="lower right")
+    return ax
+
+
+def plot_comparison(df: pd.DataFrame, sweep: str, metric: str,
+                    ax: plt.Axes | None = None) -> plt.Axes:
+    """One metric (``p_correct`` / ``false_per_frame``) versus the sweep variable, per method."""
+    ax = get_ax(ax)
+    sub = df[df["sweep"] == sweep]
+    x = "clutter" if sweep == "clutter" else "p_detect"
+    for name, g in sub.groupby("method", sort=False):
+        # the angle-constrained logic often coincides with logic 3/4: draw it dashed on top
+        style = "--s" if name.startswith("angle") else "-o"
+        ax.plot(g[x], g[metric], style, ms=4, mfc="none" if name.startswith("angle") else None,
+                label=name)
+    ax.set_xlabel("false alarms per frame" if x == "clutter" else "detection probability P_D")
+    ax.set_ylabel({"p_correct": "P(correct initiation)",
+                   "false_per_frame": "false tracks per frame"}[metric])
+    if metric == "false_per_frame":
+        ax.set_yscale("symlog", linthresh=0.01)
+    ax.legend(fontsize=7)
+    return ax
+
+
+def plot_logic_false_tracks(df: pd.DataFrame, ax: plt.Axes | None = None) -> plt.Axes:
+    """Measured (markers) and analytic (lines) false tracks per frame of the logic rules."""
+    ax = get_ax(ax)
+    for name, g in df.groupby("method", sort=False):
+        line = ax.plot(g["clutter"], g["analytic"], "-", label=f"{name} analytic")
+        ax.plot(g["clutter"], g["measured"], "o", color=line[0].get_color(),
+                label=f"{name} measured")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("false alarms per frame")
+    ax.set_ylabel("false tracks per frame")
+    ax.legend(fontsize=7)
+    return ax
+
+
+
+
+# --------------------------------------------------------------------------- (ρ, θ) voting
+def _object_pairs(scene: Scene, cfg: XuConfig):
+    """Velocity-gated pairs (frame k − 1 or k − 2 → frame k) of every frame: arrays of the
+    two positions, Δt and the object label of the pair (−1 unless both are one object)."""
+    pa, pb, dts, lab = [], [], [], []
+    for k in range(1, len(scene.frames)):
+        tk, xk = scene.frames[k]
+        for j in (k - 1, k - 2):
+            if j < 0:
+                continue
+            tj, xj = scene.frames[j]
+            ia, ib, _, _ = gated_pairs(xj, xk, tk - tj, *cfg.v_gate_px_s)
+            la, lb = scene.labels[j][ia], scene.labels[k][ib]
+            pa.append(xj[ia])
+            pb.append(xk[ib])
+            dts.append(np.full(len(ia), tk - tj))
+            lab.append(np.where((la == lb) & (la >= 0), la, -1))
+    return np.concatenate(pa), np.concatenate(pb), np.concatenate(dts), np.concatenate(lab)
+
+
+def plot_rho_theta_votes(scene: Scene, cfg: XuConfig | None = None, *, target: int = 0,
+                         axes=None):
+    """Where the pairs vote in (ρ, θ): all pairs of the scene (left), then one object's pairs
+    over the δρ × δθ cell grid with ρ measured from the image corner (middle, the paper's
+    unstated choice) and from the image centre (right).
+
+    A pair's θ error σ_θ ≈ √2 σ / (v Δt) moves its ρ by up to |r| σ_θ, with r the distance of
+    the detections from the ρ origin: far from the origin one object's pairs straddle cells.
+    """
+    cfg = cfg or xu_config()
+    if axes is None:
+        fig, axes = plt.subplots(1, 3, figsize=(13, 4.2))
+    else:
+        fig = axes[0].figure
+    pa, pb, dt, lab = _object_pairs(scene, cfg)
+    rho, th, _, _ = pair_parameters(pa, pb, dt)
+    ax = axes[0]
+    clut = lab < 0
+    ax.plot(np.degrees(th[clut]), rho[clut], ".", color="0.75", ms=2, label="other pairs")
+    for i in np.unique(lab[lab >= 0]):
+        s = lab == i
+        ax.plot(np.degrees(th[s]), rho[s], "o", ms=5, mfc="none", label=f"object {i + 1}")
+    ax.set_xlabel("θ (°)")
+    ax.set_ylabel("ρ from the image corner (px)")
+    ax.set_title(f"all velocity-gated pairs ({len(rho)})", fontsize=9)
+    ax.legend(fontsize=6.5, loc="lower left")
+    sel = lab == target
+    w = float(cfg.width_px)
+    for ax, origin, name in ((axes[1], (0.0, 0.0), "image corner"),
+                             (axes[2], (w / 2, w / 2), "image centre")):
+        r, t, _, _ = pair_parameters(pa[sel], pb[sel], dt[sel], origin)
+        td = np.degrees(t)
+        ax.plot(td, r, "o", color="tab:blue", ms=6)
+        t0 = math.floor(td.min() / cfg.cell_theta_deg - 1) * cfg.cell_theta_deg
+        t1 = math.ceil(td.max() / cfg.cell_theta_deg + 1) * cfg.cell_theta_deg
+        r0 = math.floor(r.min() / cfg.cell_rho_px - 1) * cfg.cell_rho_px
+        r1 = math.ceil(r.max() / cfg.cell_rho_px + 1) * cfg.cell_rho_px
+        for x in np.arange(t0, t1 + 1e-9, cfg.cell_theta_deg):
+            ax.axvline(x, color="0.8", lw=0.8)
+        for y in np.arange(r0, r1 + 1e-9, cfg.cell_rho_px):
+            ax.axhline(y, color="0.8", lw=0.8)
+        cells = {(math.floor(a / cfg.cell_theta_deg), math.floor(b / cfg.cell_rho_px))
+                 for a, b in zip(td, r)}
+        ax.set_xlim(t0, t1)
+        ax.set_ylim(r0, r1)
+        ax.set_xlabel("θ (°)")
+        ax.set_ylabel(f"ρ from the {name} (px)")
+        ax.set_title(f"object {target + 1}: {int(sel.sum())} pairs in {len(cells)} (ρ, θ) "
+                     f"cells — origin at the {name}", fontsize=9)
+    fig.tight_layout()
+    return fig
+
+
+# --------------------------------------------------------------------------- Monte Carlo plots
+def plot_angle_constraint(df: pd.DataFrame, ax: plt.Axes | None = None) -> plt.Axes:
+    """False tracks per frame of logic 3/4 with and without the angle constraint versus the
+    prediction-gate radius, one pair of lines per clutter level."""
+    ax = get_ax(ax)
+    for lam, g in df.groupby("clutter"):
+        plain = g[g["method"] == "logic 3/4"]
+        ang = g[g["method"] == "angle logic 3/4"]
+        line = ax.plot(plain["gate_px"], plain["false_per_frame"], "-o", ms=4,
+                       label=f"logic 3/4, {lam:g} false alarms/frame")
+        ax.plot(ang["gate_px"], ang["false_per_frame"], "--s", ms=4, mfc="none",
+                color=line[0].get_color(), label=f"angle-constrained, {lam:g}/frame")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("prediction gate radius (px)")
+    ax.set_ylabel("false tracks per frame")
+    ax.legend(fontsize=7)
+    return ax
+
+
+def plot_chance_check(df: pd.DataFrame, ax: plt.Axes | None = None) -> plt.Axes:
+    """Chance tracks per clutter-only scene: analytic (line) versus measured (markers, ±1 s.e.)."""
+    ax = get_ax(ax)
+    ax.plot(df["clutter"], df["analytic per scene"], "-", label="analytic (χ² 3-of-4 rule)")
+    err = np.sqrt(df["measured"].clip(lower=1)) / df["scenes"]
+    ax.errorbar(df["clutter"], df["measured per scene"], yerr=err, fmt="o", ms=5,
+                label="measured (verified initiator)")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("clutter points per frame")
+    ax.set_ylabel("chance tracks per scene")
+    ax.legend(fontsize=8)
+    return ax
+
+
+def plot_planted_summary(summary: pd.DataFrame, axes=None, *, recall_min: float = 0.95,
+                         ratio_max: float = 1.5):
+    """Recall (left) and false tracks per scene against the chance rate (right) per
+    initiator; dashed lines: the criterion."""
+    if axes is None:
+        fig, axes = plt.subplots(1, 2, figsize=(11, 3.8))
+    else:
+        fig = axes[0].figure
+    y = np.arange(len(summary))
+    axes[0].barh(y, summary["recall"], color="tab:blue")
+    axes[0].axvline(recall_min, color="k", ls="--", lw=1)
+    axes[0].set_yticks(y, summary["method"], fontsize=8)
+    axes[0].set_xlabel("recall (objects initiated / eligible)")
+    axes[0].set_xlim(0, 1)
+    axes[1].barh(y, summary["false per scene"], color="tab:red", label="measured")
+    chance = float(summary["chance per scene"].iloc[0])
+    axes[1].axvline(chance, color="k", lw=1, label="analytic chance rate")
+    axes[1].axvline(ratio_max * chance, color="k", ls="--", lw=1,
+                    label=f"{ratio_max:g} × chance rate")
+    axes[1].set_yticks(y, [""] * len(y))
+    axes[1].set_xscale("log")
+    axes[1].set_xlabel("false tracks per scene")
+    axes[1].legend(fontsize=7)
+    fig.tight_layout()
+    return fig
+
+
+def plot_scene_tracks(scene: Scene, tracks: list[Track], ax: plt.Axes | None = None, *,
+                      title: str = "", width: float = 512.0) -> plt.Axes:
+    """One scene: all detections (grey), the objects' true paths (dotted), correct tracks
+    (green) and false tracks (red)."""
+    ax = get_ax(ax, figsize=(5, 5))
+    fr = validate_frames(scene.frames)
+    allxy = np.concatenate([xy for _, xy in scene.frames])
+    ax.plot(*allxy.T, ".", color="0.7", ms=3)
+    truth = np.array(scene.truth_xy)
+    for i in range(scene.n_targets):
+        ax.plot(*truth[:, i].T, ":", color="k", lw=1)
+    sc = score_tracks(tracks, scene)
+    for tr in tracks:
+        ids = {int(scene.labels[f][d]) for f, d in tr.hits if f <= tr.confirmed_at}
+        good = len(ids) == 1 and min(ids) >= 0
+        ax.plot(*tr.positions(fr).T, "-o" if good else "-x", ms=3,
+                color="tab:green" if good else "tab:red")
+    ax.set_xlim(0, width)
+    ax.set_ylim(width, 0)
+    ax.set_aspect("equal")
+    ax.set_xlabel("x (px)")
+    ax.set_ylabel("y (px)")
+    ax.set_title(f"{title}{sc['correct']}/{sc['eligible']} objects, {sc['false']} false",
+                 fontsize=9)
+    return ax
+
+
+# --------------------------------------------------------------------------- explore
+EXPLORE_CLUTTER = (5.0, 15.0, 30.0, 50.0)
+EXPLORE_SCENES = 6
+
+
+def _explore_initiator(neighbourhood: int, centred: bool, verified: bool,
+                       cfg: PlantedConfig) -> ModifiedHoughInitiator:
+    xu = xu_config()
+    vmin, vmax = cfg.v_gate_px_s
+    if verified:
+        return ModifiedHoughInitiator(v_min=vmin, v_max=vmax, sigma_px=cfg.sigma_px,
+                                      alpha=cfg.alpha)
+    origin = (cfg.width_px / 2, cfg.width_px / 2) if centred else (0.0, 0.0)
+    return ModifiedHoughInitiator(d_rho=xu.cell_rho_px, d_theta_deg=xu.cell_theta_deg,
+                                  d_v=xu.cell_v_px_s, v_min=vmin, v_max=vmax,
+                                  neighbourhood=neighbourhood, origin_px=origin, literal=True)
+
+
+@cache
+def _explore_scenes(clutter: float) -> tuple:
+    cfg = PlantedConfig()
+    rng = np.random.default_rng(int(1000 + clutter))
+    return tuple(planted_scene(rng, cfg, clutter_per_frame=clutter)
+                 for _ in range(EXPLORE_SCENES))
+
+
+@cache
+def explore_results(clutter: float, neighbourhood: int = 6, centred: bool = False,
+                    verified: bool = False) -> tuple:
+    """Cached results of one modified-Hough variant on the Explore panel's scenes.
+
+    Returns a tuple of ``(scene, tracks, score, chance)`` per scene (``EXPLORE_SCENES`` seeded
+    planted scenes at the given clutter level; ``neighbourhood`` and ``centred`` act on the
+    paper's literal procedure, ``verified`` selects our initiator).
+    """
+    cfg = PlantedConfig()
+    ini = _explore_initiator(int(neighbourhood), bool(centred), bool(verified), cfg)
+    out = []
+    for scene in _explore_scenes(float(clutter)):
+        tracks = ini.initiate(scene.frames)
+        chance = chi2_chance_tracks(scene, v_min=cfg.v_gate_px_s[0], v_max=cfg.v_gate_px_s[1],
+                                    sigma_px=cfg.sigma_px, alpha=cfg.alpha, width=cfg.width_px)
+        out.append((scene, tracks, score_tracks(tracks, scene), chance))
+    return tuple(out)
+
+
+def plot_explore(clutter: float = 15.0, neighbourhood: int = 6, centred: bool = False,
+                 verified: bool = False):
+    """The Explore panel's figure: recall and false tracks aggregated over the panel's scenes
+    (left) and the first scene's tracks (right) for one modified-Hough variant."""
+    res = explore_results(float(clutter), int(neighbourhood), bool(centred), bool(verified))
+    fig, axes = plt.subplots(1, 2, figsize=(10.5, 4.3))
+    correct = np.array([r[2]["correct"] for r in res])
+    elig = np.array([r[2]["eligible"] for r in res])
+    false = np.array([r[2]["false"] for r in res])
+    chance = np.array([r[3] for r in res])
+    x = np.arange(len(res))
+    ax = axes[0]
+    ax.bar(x - 0.2, correct / np.maximum(elig, 1), 0.4, color="tab:blue", label="recall")
+    ax.set_ylim(0, 1.05)
+    ax.set_ylabel("recall per scene")
+    ax.set_xlabel("scene")
+    ax2 = ax.twinx()
+    ax2.bar(x + 0.2, false, 0.4, color="tab:red", label="false tracks")
+    ax2.plot(x + 0.2, chance, "k_", ms=14, mew=2, label="chance rate (χ² 3-of-4)")
+    ax2.set_ylabel("false tracks per scene")
+    h1, l1 = ax.get_legend_handles_labels()
+    h2, l2 = ax2.get_legend_handles_labels()
+    ax.legend(h1 + h2, l1 + l2, fontsize=7, loc="upper left")
+    name = ("ours (verified)" if verified else
+            f"paper, {neighbourhood}-nbhd, ρ from the {'centre' if centred else 'corner'}")
+    ax.set_title(f"{name}: recall {correct.sum() / max(elig.sum(), 1):.2f}, "
+                 f"{false.mean():.1f} false/scene (chance {chance.mean():.1f}) — "
+                 f"{len(res)} scenes only", fontsize=8.5)
+    plot_scene_tracks(res[0][0], list(res[0][1]), ax=axes[1], title="scene 0: ")
+    fig.tight_layout()
+    return fig

@@ -1,0 +1,76 @@
+"""Checkers of notebook 04's exercises: right answers pass, wrong ones fail, bad ones raise."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from eotrack.exercises import check, exercise_ids
+from eotrack.experiments import track_init_hough as TH
+
+SLUG = "track_init_hough"
+
+
+def _right_1(t1, t2, t3, which):
+    # directly from the variance of (x_which − prediction from the other two)
+    t = [t1, t2, t3]
+    a, b = [t[i] for i in range(3) if i != which]
+    tau = (t[which] - b) / (b - a)
+    return 1.0 + (1.0 + tau) ** 2 + tau**2
+
+
+def _right_2():
+    cfg = TH.PlantedConfig()
+    sc = TH.planted_scene(np.random.default_rng(2016), cfg, clutter_per_frame=30.0, n_objects=0,
+                          n_stars=0)
+    return TH.chi2_chance_tracks(sc, v_min=cfg.v_gate_px_s[0], v_max=cfg.v_gate_px_s[1],
+                                 sigma_px=cfg.sigma_px, alpha=cfg.alpha)
+
+
+def _right_3():
+    return float(np.mean([r[2]["false"] for r in TH.explore_results(50.0, 6, False, False)]))
+
+
+RIGHT = {
+    "track_init_hough.1": _right_1,
+    "track_init_hough.2": _right_2,
+    "track_init_hough.3": _right_3,
+    "track_init_hough.4": lambda: "a",
+    "track_init_hough.5": lambda: "b",
+}
+
+WRONG = {
+    "track_init_hough.1": lambda t1, t2, t3, which: 1.5,  # the evenly spaced middle only
+    "track_init_hough.2": lambda: 2 * _right_2(),
+    "track_init_hough.3": lambda: _right_3() + 3.0,
+    "track_init_hough.4": lambda: "c",
+    "track_init_hough.5": lambda: "a",
+}
+
+
+def test_at_least_four_exercises():
+    assert len(exercise_ids(SLUG)) >= 4
+    assert sorted(exercise_ids(SLUG)) == sorted(RIGHT)
+
+
+@pytest.mark.parametrize("ex", sorted(RIGHT))
+def test_right_answer_passes(ex):
+    ans = RIGHT[ex] if ex == "track_init_hough.1" else RIGHT[ex]()
+    assert check(ex, ans)
+
+
+@pytest.mark.parametrize("ex", sorted(WRONG))
+def test_wrong_answer_fails(ex):
+    ans = WRONG[ex] if ex == "track_init_hough.1" else WRONG[ex]()
+    assert not check(ex, ans)
+
+
+@pytest.mark.parametrize(("ex", "bad", "exc"), [
+    ("track_init_hough.1", 3.0, TypeError),
+    ("track_init_hough.2", "many", TypeError),
+    ("track_init_hough.3", [1.0, 2.0], TypeError),
+    ("track_init_hough.4", "e", ValueError),
+    ("track_init_hough.5", "z", ValueError),
+])
+def test_bad_answer_raises(ex, bad, exc):
+    with pytest.raises(exc):
+        check(ex, bad)
