@@ -71,7 +71,7 @@ html_theme_options = {
     "secondary_sidebar_items": {"**": ["page-toc"], "notebooks/00_index": []},
 }
 html_last_updated_fmt = None
-html_copy_source = False
+html_copy_source = True  # the download button offers each page's .ipynb
 
 # the book's sidebar, in reading order; solutions and reports are their own parts
 _PARTS = [
