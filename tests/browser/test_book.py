@@ -135,6 +135,14 @@ def browser(chromium):
         b.close()
 
 
+# the page's prose (code cells and typeset math removed): raw LaTeX must not survive in it
+_PROSE_TEXT = """() => {
+  const main = document.querySelector("main").cloneNode(true);
+  main.querySelectorAll("pre, code, script, mjx-container, .cell_input").forEach(e => e.remove());
+  return main.innerText;
+}"""
+
+
 def _open(browser, url: str):
     page = browser.new_page(viewport={"width": 1400, "height": 1000})
     page.set_default_timeout(60_000)
@@ -154,8 +162,7 @@ def _open(browser, url: str):
 def test_page_shows_figures_and_typeset_math(browser, server, nb):
     page, requests = _open(browser, f"{server}/{nb.with_suffix('.html').as_posix()}")
     try:
-        main = page.locator("main")
-        text = main.inner_text()
+        text = page.evaluate(_PROSE_TEXT)
         assert "$$" not in text, f"{nb}: raw $$ left in the page"
         assert not re.search(r"\\\[|\\begin\{", text), f"{nb}: raw LaTeX left in the page"
         n_math = page.locator("main .math").count()
@@ -172,6 +179,20 @@ def test_page_shows_figures_and_typeset_math(browser, server, nb):
             page.locator("main .jupyter-widgets").first.wait_for(state="attached")
         remote = [u for u in requests if not u.startswith(server) and not u.startswith("data:")]
         assert not remote, f"{nb}: requests left the machine: {remote[:5]}"
+    finally:
+        page.close()
+
+
+@pytest.mark.parametrize("slug", sorted(p.parent.name for p in
+                                        (ROOT / "papers_repro").glob("*/REPORT.md")))
+def test_report_pages_show_their_figures(browser, server, slug):
+    page, requests = _open(browser, f"{server}/papers_repro/{slug}/REPORT.html")
+    try:
+        want = len(re.findall(r"!\[", (ROOT / "papers_repro" / slug / "REPORT.md").read_text()))
+        shown = page.eval_on_selector_all(
+            "main img", "els => els.filter(e => e.complete && e.naturalWidth > 0).length")
+        assert shown >= want, f"{slug}: REPORT links {want} figures, the page shows {shown}"
+        assert all(u.startswith(server) or u.startswith("data:") for u in requests)
     finally:
         page.close()
 
