@@ -24,7 +24,7 @@ def _frame(rng, bg=20.0, gradient=0.0):
     return np.clip(np.rint(img), 0, 255).astype(np.uint8), xy
 
 
-@pytest.mark.parametrize("method", ["adaptive", "global"])
+@pytest.mark.parametrize("method", ["sky", "adaptive", "global"])
 def test_centroids_brightest_first(method):
     img, xy = _frame(np.random.default_rng(0))
     out = extract_stars(img, method=method)
@@ -39,15 +39,16 @@ def test_centroid_grow_reduces_bias():
     img, xy = _frame(np.random.default_rng(0))
     err = []
     for grow in (0, 2):
-        out = extract_stars(img, config=ExtractionConfig(centroid_grow=grow))
+        out = extract_stars(img, method="adaptive", config=ExtractionConfig(centroid_grow=grow))
         err.append(max(np.min(np.hypot(*(out.xy - p).T)) for p in xy))
     assert err[1] < err[0] and err[1] < 0.08
 
 
 def test_adaptive_survives_gradient_global_does_not():
     img, xy = _frame(np.random.default_rng(1), bg=60, gradient=150)
-    a = extract_stars(img)
-    assert np.min(np.hypot(*(a.xy - xy[2]).T)) < 0.3
+    for method in ("sky", "adaptive"):
+        a = extract_stars(img, method=method)
+        assert np.min(np.hypot(*(a.xy - xy[2]).T)) < 0.3
     g = extract_stars(img, method="global")
     assert len(g.xy) == 0 or np.min(np.hypot(*(g.xy - xy[2]).T)) > 0.3
 
@@ -61,7 +62,7 @@ def test_quantiles_and_dynamic_range():
 
 def test_low_dynamic_range_uses_roi():
     img, _ = _frame(np.random.default_rng(2), bg=200)
-    r = extract_stars(img, return_info=True, config=ExtractionConfig(r_min=0.5))
+    r = extract_stars(img, method="adaptive", return_info=True, config=ExtractionConfig(r_min=0.5))
     assert r.dynamic_range < 0.5 and r.roi_fraction < 0.5 and len(r) >= 2
 
 
@@ -93,3 +94,60 @@ def test_bad_images():
         grey_quantiles(img, (0.9, 0.1))
     with pytest.raises(ValueError, match="flux_ref"):
         image_confidence([1.0], [1.0], 0.0)
+
+
+def test_default_is_accurate_and_uncapped():
+    rng = np.random.default_rng(4)
+    xy = rng.uniform(8, 248, (120, 2))
+    img = render_gaussian_spots((256, 256), xy, 3000.0, 1.2) + 20 + rng.normal(0, 2.0, (256, 256))
+    for method in ("sky", "adaptive"):
+        r = extract_stars(img, method=method)
+        assert len(r.xy) > 100                          # no silent cap of 50
+        d = np.min(np.hypot(*(r.xy[None] - xy[:, None]).transpose(2, 0, 1)), axis=1)
+        assert np.median(d[d < 1.5]) < 0.05, method
+
+
+def test_dynamic_range_scaled_to_data():
+    rng = np.random.default_rng(5)
+    xy = rng.uniform(8, 120, (30, 2))
+    img = render_gaussian_spots((128, 128), xy, 20000.0, 1.0) + 200 + rng.normal(0, 20, (128, 128))
+    R0 = dynamic_range(img)
+    assert 0 < R0 < 1
+    assert dynamic_range(img + 1000) == pytest.approx(R0, rel=1e-6)    # an offset changes nothing
+    assert dynamic_range(img, full_scale=65535) < R0
+    with pytest.raises(ValueError, match="full_scale"):
+        dynamic_range(img, full_scale=0)
+    # 16-bit data are no longer clipped at 255: the paper's method finds the stars
+    r = extract_stars((img + 1000).astype(np.uint16), method="adaptive")
+    d = np.min(np.hypot(*(r.xy[None] - xy[:, None]).transpose(2, 0, 1)), axis=1)
+    assert np.mean(d < 1) > 0.9
+
+
+def test_sky_deblends_touching_pair_and_saturated_star():
+    rng = np.random.default_rng(6)
+    xy = np.array([[40.0, 40.0], [44.2, 41.5], [90.3, 70.6]])     # pair 3.4 σ apart
+    img = render_gaussian_spots((128, 128), xy, np.array([8e4, 4e4, 2e6]), 1.3)
+    img = np.clip(img + 100 + rng.normal(0, 5, img.shape), 0, 20000)
+    r = extract_stars(img)
+    for p in xy:
+        assert np.min(np.hypot(*(r.xy - p).T)) < 0.6
+    assert len(r.xy) <= 6
+
+
+def test_sky_config_and_cap():
+    from eotrack.imaging import SkyConfig
+
+    img, _ = _frame(np.random.default_rng(0))
+    r = extract_stars(img, config=SkyConfig(max_sources=2))
+    full = extract_stars(img)
+    assert len(r.xy) == 2 and np.allclose(r.flux, full.flux[:2])
+    with pytest.raises(TypeError, match="SkyConfig"):
+        extract_stars(img, config=ExtractionConfig())
+    with pytest.raises(TypeError, match="ExtractionConfig"):
+        extract_stars(img, method="adaptive", config=SkyConfig())
+    with pytest.raises(ValueError, match="thresh"):
+        SkyConfig(thresh=0)
+    with pytest.raises(ValueError, match="max_sources"):
+        SkyConfig(max_sources=0)
+    with pytest.raises(ValueError, match="max_stars"):
+        ExtractionConfig(max_stars=0)

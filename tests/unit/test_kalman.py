@@ -103,6 +103,25 @@ def test_batch_matches_single():
         np.testing.assert_allclose(Pb[i], Ps, atol=1e-7)
 
 
+@pytest.mark.parametrize("axis_symmetric", [True, False])
+def test_batch_independent_dropouts_match_single(axis_symmetric):
+    F, H, Q, R, x0, P0 = _model()
+    if axis_symmetric:                           # one 3 × 3 covariance per sequence
+        R = 0.25 * np.eye(2)
+    else:                                        # the general (d, d, B) path
+        P0 = P0 + np.diag([0.5, 0, 0, 0, 0, 0])
+    rng = np.random.default_rng(7)
+    zb = np.stack([_zs(rng, 50)[1] for _ in range(6)])
+    zb[rng.random(zb.shape[:2]) < 0.2] = np.nan
+    xb, Pb = kalman_filter_batch(zb, F, H, Q, R, x0, P0, return_covariances=True)
+    _, Pf = kalman_filter_batch(zb, F, H, Q, R, x0, P0)
+    np.testing.assert_allclose(Pf, Pb[:, -1], atol=1e-12)
+    for i in range(6):
+        xs, Ps = kalman_filter(zb[i], F, H, Q, R, x0, P0)
+        np.testing.assert_allclose(xb[i], xs, atol=1e-8)
+        np.testing.assert_allclose(Pb[i], Ps, atol=1e-7)
+
+
 def test_never_visible_is_pure_prediction():
     F, H, Q, R, x0, P0 = _model()
     x0 = np.array([1.0, 2, 0.5, 0, 0, 0])

@@ -1,9 +1,27 @@
-"""Star extraction: the adaptive-threshold method of Sheng 2026 (§1.3) and a global baseline.
+"""Star extraction: a general sky extractor (default), the paper's adaptive-threshold method
+(Sheng 2026, §1.3) and its global baseline.
 
-Adaptive method (default of :func:`extract_stars`):
+Sky method (``method="sky"``, the default of :func:`extract_stars`) — for any astronomical frame:
+
+1. background and noise maps from sigma-clipped meshes (:func:`eotrack.imaging.background_map`);
+2. the background-subtracted image filtered by a 3×3 kernel; detection pixels where the filtered
+   image exceeds ``thresh`` times its local noise (``0.375 · rms``, the kernel's noise gain);
+3. 3×3 local maxima of the filtered image with at least ``min_area`` detection pixels around;
+4. deblending: a maximum is a star of its own if it rises above the saddle to the nearest higher
+   maximum of its region by ``deblend_nsigma`` local noise and ``deblend_contrast`` of that peak
+   (:func:`eotrack.imaging.deblend_peaks`);
+5. Gaussian-windowed centroids (window σ = the PSF σ estimated from the stars themselves) with
+   pixels nearer a neighbour masked (:func:`eotrack.imaging.windowed_centroids`);
+6. fluxes in a circular aperture of ``aperture_radius`` PSF σ around each centroid; every
+   detection is returned, brightest first (an optional ``max_sources`` cap is applied after
+   this ranking).
+
+Paper's adaptive method (``method="adaptive"``):
 
 1. grey histogram ``H(g)``, ``p(g) = H(g)/N``, CDF ``C(g)``; quantiles ``g5``, ``g95`` and the
-   effective dynamic range ``R = (g95 − g5)/255`` (eqs. 15–18);
+   effective dynamic range ``R = (g95 − g5)/255`` (eqs. 15–18); for data that are not 8-bit
+   grey levels the quantiles are taken on the values themselves and divided by the data's range
+   (``max − min``) instead of 255 (:func:`dynamic_range`);
 2. background ``B = I * G_{σ_b}`` (Gaussian blur, eq. 19) and ``I_f = I − B`` (eq. 20);
 3. if ``R`` is below ``r_min`` (strong light, occlusion) the search is restricted to a region
    of interest: pixels with ``I_f ≥ T_f = μ_f + k σ_f`` (eqs. 21–22, with the comparison the
@@ -14,7 +32,10 @@ Adaptive method (default of :func:`extract_stars`):
 5. connected components ℜ_k (8-connectivity, at least ``min_area`` pixels) and intensity-weighted
    centroids ``z = Σ x w / Σ w`` (eqs. 28–29) with weights ``w = I − B`` (the background-
    subtracted intensity; the paper writes ``I``, which pulls the centroid towards the middle of
-   the pixel set whenever the background is not zero).
+   the pixel set whenever the background is not zero). By default each region is grown by
+   ``centroid_grow = 2`` pixels before the centroid (the paper's region ℜ_k, ``centroid_grow =
+   0``, cuts off the PSF wings and biases the centroid by ~0.1 px). No cap: every region is
+   returned unless ``max_stars`` is set.
 
 Global baseline (``method="global"``): one threshold ``T = μ + k σ`` of the whole image, star
 pixels ``I ≥ T``, the same components and centroids with weights ``I − T``.
@@ -25,17 +46,25 @@ Pixel convention: ``x`` = column, ``y`` = row, pixel centres at integers (as
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any, NamedTuple
 
 import cv2
 import numpy as np
 
+from eotrack.imaging.background import BackgroundConfig, background_map
+from eotrack.imaging.deblend import (
+    deblend_peaks,
+    estimate_psf_sigma,
+    find_peaks,
+    windowed_centroids,
+)
 from eotrack.validation import check_choice, check_int, check_positive
 
 __all__ = [
     "ExtractionConfig",
     "ExtractionResult",
+    "SkyConfig",
     "StarCentroids",
     "dynamic_range",
     "extract_stars",
@@ -62,16 +91,20 @@ class ExtractionConfig:
         Local threshold factor of eq. (27).
     r_min
         Dynamic range below which only the ROI is searched (eq. 18's "preset threshold").
+    full_scale
+        The grey-level range ``R`` is divided by (None: 255 for 8-bit data, otherwise the data's
+        ``max − min``).
     min_area
         Smallest component kept (pixels).
     max_area
         Largest component kept (pixels; larger blobs are glare or cloud edges).
     max_stars
-        Keep at most this many (brightest) detections.
+        Keep at most this many detections, brightest (largest summed weight) first; None (the
+        default) keeps every detection.
     centroid_grow
         Grow each region by this many pixels (8-neighbourhood) before the weighted centroid
-        (0 = the paper's region ℜ_k; 1–2 include the PSF wings cut off by the threshold and
-        reduce the pixel-locking bias of a thresholded centroid).
+        (0 = the paper's region ℜ_k; the default 2 includes the PSF wings cut off by the
+        threshold and removes most of the pixel-locking bias of a thresholded centroid).
     """
 
     sigma_b: float = 6.0
@@ -81,8 +114,9 @@ class ExtractionConfig:
     r_min: float = 0.2
     min_area: int = 2
     max_area: int = 400
-    max_stars: int = 50
-    centroid_grow: int = 0
+    max_stars: int | None = None
+    centroid_grow: int = 2
+    full_scale: float | None = None
 
     def __post_init__(self) -> None:
         check_positive(self.sigma_b, "sigma_b")
@@ -92,8 +126,63 @@ class ExtractionConfig:
         check_positive(self.r_min, "r_min", allow_zero=True)
         check_int(self.min_area, "min_area", min_value=1)
         check_int(self.max_area, "max_area", min_value=self.min_area)
-        check_int(self.max_stars, "max_stars", min_value=1)
+        if self.max_stars is not None:
+            check_int(self.max_stars, "max_stars", min_value=1)
         check_int(self.centroid_grow, "centroid_grow", min_value=0, max_value=5)
+        if self.full_scale is not None:
+            check_positive(self.full_scale, "full_scale")
+
+
+@dataclass(frozen=True)
+class SkyConfig:
+    """Parameters of the sky extractor (``method="sky"``).
+
+    Attributes
+    ----------
+    thresh
+        Detection threshold: filtered background-subtracted intensity over its local noise.
+    min_area
+        Detection pixels needed in a peak's 5×5 neighbourhood (rejects single hot pixels).
+    background
+        Mesh background settings (:class:`eotrack.imaging.BackgroundConfig`).
+    deblend_nsigma, deblend_contrast
+        Prominence a local maximum needs above the saddle to its higher neighbour, in local
+        noise units and as a fraction of the higher peak.
+    psf_sigma
+        PSF σ in pixels for the centroid window and the aperture; None estimates it from the
+        detected stars (:func:`eotrack.imaging.estimate_psf_sigma`).
+    aperture_radius
+        Aperture radius for the flux, in PSF σ (at least 1.5 px).
+    centroid_iterations
+        Windowed-centroid iterations.
+    max_sources
+        Optional cap, applied after ranking by aperture flux (None = every detection).
+    """
+
+    thresh: float = 3.0
+    min_area: int = 3
+    background: BackgroundConfig = field(default_factory=BackgroundConfig)
+    deblend_nsigma: float = 3.0
+    deblend_contrast: float = 0.005
+    psf_sigma: float | None = None
+    aperture_radius: float = 2.5
+    centroid_iterations: int = 4
+    max_sources: int | None = None
+
+    def __post_init__(self) -> None:
+        check_positive(self.thresh, "thresh")
+        check_int(self.min_area, "min_area", min_value=1)
+        if not isinstance(self.background, BackgroundConfig):
+            raise TypeError("background must be a BackgroundConfig, got "
+                            f"{type(self.background).__name__}")
+        check_positive(self.deblend_nsigma, "deblend_nsigma", allow_zero=True)
+        check_positive(self.deblend_contrast, "deblend_contrast", allow_zero=True)
+        if self.psf_sigma is not None:
+            check_positive(self.psf_sigma, "psf_sigma")
+        check_positive(self.aperture_radius, "aperture_radius")
+        check_int(self.centroid_iterations, "centroid_iterations", min_value=0, max_value=50)
+        if self.max_sources is not None:
+            check_int(self.max_sources, "max_sources", min_value=1)
 
 
 class StarCentroids(NamedTuple):
@@ -173,18 +262,32 @@ def grey_quantiles(image: Any, q: tuple[float, float] = (0.05, 0.95)) -> tuple[i
     return int(np.searchsorted(cdf, lo - 1e-12)), int(np.searchsorted(cdf, hi - 1e-12))
 
 
-def dynamic_range(image: Any) -> float:
-    """Eq. (18): ``R = (g95 − g5) / 255``."""
-    return _dynamic_range(_check_image(image))
+def dynamic_range(image: Any, full_scale: float | None = None) -> float:
+    """Eq. (18): ``R = (g95 − g5) / 255``, scaled to the data's range.
+
+    For 8-bit grey levels (all values in 0…255) this is the paper's formula. Other data (16-bit,
+    float, with an offset) are not clipped to 0…255: the 5 % and 95 % quantiles of the values
+    are divided by ``full_scale`` (default: the data's ``max − min``), so ``R`` keeps its
+    meaning of "fraction of the range the bulk of the pixels spans".
+    """
+    if full_scale is not None:
+        check_positive(full_scale, "full_scale")
+    return _dynamic_range(_check_image(image), full_scale)
 
 
-def _dynamic_range(img: np.ndarray) -> float:
-    g = np.clip(np.rint(img), 0, 255).astype(np.uint8) if img.dtype != np.uint8 else img
-    hist = cv2.calcHist([g], [0], None, [256], [0, 256]).ravel()
-    cdf = np.cumsum(hist) / g.size
-    g5 = int(np.searchsorted(cdf, 0.05 - 1e-12))
-    g95 = int(np.searchsorted(cdf, 0.95 - 1e-12))
-    return (g95 - g5) / 255.0
+def _dynamic_range(img: np.ndarray, full_scale: float | None = None) -> float:
+    lo, hi = float(img.min()), float(img.max())
+    if lo >= 0 and hi <= 255:
+        g = np.rint(img).astype(np.uint8)
+        hist = cv2.calcHist([g], [0], None, [256], [0, 256]).ravel()
+        cdf = np.cumsum(hist) / g.size
+        g5 = int(np.searchsorted(cdf, 0.05 - 1e-12))
+        g95 = int(np.searchsorted(cdf, 0.95 - 1e-12))
+        return (g95 - g5) / (255.0 if full_scale is None else full_scale)
+    step = max(1, int(np.sqrt(img.size / 65536)))
+    q5, q95 = np.quantile(img[::step, ::step], [0.05, 0.95])
+    scale = (hi - lo) if full_scale is None else full_scale
+    return float((q95 - q5) / scale)
 
 
 def _components(mask: np.ndarray, weights: np.ndarray, cfg: ExtractionConfig
@@ -222,19 +325,70 @@ def _robust_std(a: np.ndarray) -> float:
     return float(1.4826 * np.median(np.abs(sub - med))) or float(np.std(a)) or 1.0
 
 
-def extract_stars(image: Any, *, method: str = "adaptive", config: ExtractionConfig | None = None,
+#: 3×3 detection kernel (SExtractor's default) and its white-noise gain sqrt(Σ k²)
+_KERNEL = np.array([[1, 2, 1], [2, 4, 2], [1, 2, 1]], np.float32) / 16.0
+_KERNEL_GAIN = float(np.sqrt((_KERNEL ** 2).sum()))
+_KERNEL_1D = np.array([0.25, 0.5, 0.25], np.float32)
+
+
+def _extract_sky(img: np.ndarray, cfg: SkyConfig) -> ExtractionResult:
+    bg = background_map(img, cfg.background)
+    sub = img - bg.back
+    det = cv2.sepFilter2D(sub, -1, _KERNEL_1D, _KERNEL_1D, borderType=cv2.BORDER_REFLECT)
+    noise = bg.rms * np.float32(_KERNEL_GAIN)
+    mask = det > noise * np.float32(cfg.thresh)
+    R = _dynamic_range(img)
+    empty = np.zeros(0)
+    none = ExtractionResult(np.zeros((0, 2)), empty, empty, empty, empty, R, 1.0, bg.global_rms)
+    if cfg.min_area > 1:
+        # at least min_area detection pixels in the peak's 5×5 neighbourhood
+        cnt = cv2.boxFilter(mask.view(np.uint8), cv2.CV_16U, (5, 5), normalize=False,
+                            borderType=cv2.BORDER_CONSTANT)
+        mask &= cnt >= cfg.min_area
+    peaks = find_peaks(det, mask)
+    if len(peaks) == 0:
+        return none
+    keep = deblend_peaks(det, peaks, noise, nsigma=cfg.deblend_nsigma,
+                         contrast=cfg.deblend_contrast)
+    peaks = peaks[keep]
+    pk = det[peaks[:, 1], peaks[:, 0]]
+    if cfg.psf_sigma is None:
+        order = np.argsort(-pk, kind="stable")
+        skip = len(order) // 10                      # the brightest may be saturated
+        sigma = estimate_psf_sigma(sub, peaks[order[skip: skip + 50]])
+    else:
+        sigma = cfg.psf_sigma
+    xy, flux = windowed_centroids(sub, peaks.astype(float), sigma,
+                                  iterations=cfg.centroid_iterations,
+                                  aperture=max(1.5, cfg.aperture_radius * sigma))
+    peak = sub[peaks[:, 1], peaks[:, 0]].astype(float)
+    snr = peak / bg.rms[peaks[:, 1], peaks[:, 0]]
+    area = mask[np.clip(peaks[:, 1, None] + np.arange(-2, 3), 0, img.shape[0] - 1)[:, :, None],
+                np.clip(peaks[:, 0, None] + np.arange(-2, 3), 0, img.shape[1] - 1)[:, None, :]
+                ].sum(axis=(1, 2)).astype(float)
+    order = np.argsort(-flux, kind="stable")
+    if cfg.max_sources is not None:
+        order = order[: cfg.max_sources]
+    return ExtractionResult(xy[order], flux[order], area[order], peak[order], snr[order], R, 1.0,
+                            bg.global_rms)
+
+
+def extract_stars(image: Any, *, method: str = "sky",
+                  config: ExtractionConfig | SkyConfig | None = None,
                   return_info: bool = False) -> StarCentroids | ExtractionResult:
     """Extract star centroids from one image.
 
     Parameters
     ----------
     image
-        2-D grey image (8-bit levels expected; any real dtype accepted).
+        2-D image (any real dtype, any range).
     method
-        ``"adaptive"`` (the paper's local-background method, default) or ``"global"`` (one
-        ``μ + kσ`` threshold for the whole image, the paper's baseline).
+        ``"sky"`` (default: mesh background and noise maps, deblending, windowed centroids —
+        for any astronomical frame), ``"adaptive"`` (the paper's local-threshold method) or
+        ``"global"`` (one ``μ + kσ`` threshold for the whole image, the paper's baseline).
     config
-        :class:`ExtractionConfig` (defaults stated there).
+        :class:`SkyConfig` for ``"sky"``, :class:`ExtractionConfig` for the paper's methods
+        (defaults stated there).
     return_info
         Return an :class:`ExtractionResult` with areas, peaks, SNRs, ``R`` and ROI size.
 
@@ -249,11 +403,18 @@ def extract_stars(image: Any, *, method: str = "adaptive", config: ExtractionCon
         If the image is empty, constant, not 2-D or contains non-finite values.
     """
     img = _check_image(image)
-    check_choice(method, "method", ("adaptive", "global"))
+    check_choice(method, "method", ("sky", "adaptive", "global"))
+    if method == "sky":
+        scfg = SkyConfig() if config is None else config
+        if not isinstance(scfg, SkyConfig):
+            raise TypeError(f"config for method 'sky' must be a SkyConfig, got "
+                            f"{type(scfg).__name__}")
+        res = _extract_sky(img, scfg)
+        return res if return_info else StarCentroids(res.xy, res.flux)
     cfg = ExtractionConfig() if config is None else config
     if not isinstance(cfg, ExtractionConfig):
         raise TypeError(f"config must be an ExtractionConfig, got {type(cfg).__name__}")
-    R = _dynamic_range(img)
+    R = _dynamic_range(img, cfg.full_scale)
     if method == "global":
         mu, sd = cv2.meanStdDev(img)
         T = float(mu[0, 0] + cfg.k * sd[0, 0])
@@ -284,7 +445,7 @@ def extract_stars(image: Any, *, method: str = "adaptive", config: ExtractionCon
             mask &= roi
         w = f
     xy, flux, area, peak = _components(mask, w, cfg)
-    order = np.argsort(-flux, kind="stable")[: cfg.max_stars]
+    order = np.argsort(-flux, kind="stable")[: cfg.max_stars]   # [:None] keeps all
     xy, flux, area, peak = xy[order], flux[order], area[order], peak[order]
     if not return_info:
         return StarCentroids(xy, flux)

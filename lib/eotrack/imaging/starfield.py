@@ -23,9 +23,11 @@ from eotrack.validation import (
 from .psf import render_gaussian_spots
 
 __all__ = [
+    "CrowdedField",
     "StarField",
     "StarFieldConfig",
     "catalogue_stars_in_view",
+    "crowded_field",
     "render_star_image",
     "star_count_slope",
     "synthetic_faint_stars",
@@ -177,3 +179,119 @@ def render_star_image(shape: tuple[int, int], xy, mag, rng: np.random.Generator,
     img = rng.poisson(img).astype(float)
     img += rng.normal(0.0, config.read_noise_e, img.shape)
     return img
+
+
+@dataclass(frozen=True)
+class CrowdedField:
+    """A simulated crowded frame with its truth.
+
+    Attributes
+    ----------
+    image
+        Image in ADU (float64; integer-valued, saturated pixels at ``saturation``).
+    xy, flux
+        True centres ``(n, 2)`` (x = column, y = row) and total fluxes (ADU) of every star.
+    peak_snr
+        Peak signal over the background noise of each star (before saturation).
+    saturated
+        Stars whose core reaches the saturation level.
+    blended
+        Stars with a neighbour closer than ``3 σ_PSF``.
+    sigma_px
+        The PSF σ.
+    noise
+        Background noise σ (ADU).
+    """
+
+    image: np.ndarray
+    xy: np.ndarray
+    flux: np.ndarray
+    peak_snr: np.ndarray
+    saturated: np.ndarray
+    blended: np.ndarray
+    sigma_px: float
+    noise: float
+
+
+def crowded_field(rng: np.random.Generator, size: int = 512, *, n_stars: int | None = None,
+                  sigma_px: float = 1.3, pair_fraction: float = 0.25, sky: float = 1000.0,
+                  gradient: float = 800.0, glow: float = 600.0, read_noise: float = 5.0,
+                  saturation: float = 40000.0, n_saturated: int | None = None,
+                  xy_extra: np.ndarray | None = None) -> CrowdedField:
+    """A crowded star field with blends, saturated stars and a sky gradient (16-bit-like ADU).
+
+    Stars follow a power-law flux distribution (``dN/dF ∝ F^-2``, 400 … 10⁶ ADU, about one
+    star per 500 px² by default); a fraction ``pair_fraction`` gets a companion 1.5–3.5 σ away
+    (a touching blend); ``n_saturated`` (default one per 20,000 px²) bright stars of
+    3·10⁵–3·10⁶ ADU saturate. The sky is ``sky`` plus a linear gradient across the frame and a
+    Gaussian glow (stray light); Poisson noise (gain 1) and Gaussian read noise; the result is
+    rounded and clipped at ``saturation``.
+
+    Parameters
+    ----------
+    rng
+        Random generator.
+    size
+        Image side (pixels).
+    n_stars
+        Number of primary stars (default ``size² / 400``).
+    sigma_px, pair_fraction, sky, gradient, glow, read_noise, saturation
+        PSF σ, blend fraction, sky level, gradient amplitude, glow amplitude, read noise (ADU)
+        and saturation level.
+    n_saturated
+        Number of extra very bright stars.
+    xy_extra
+        Optional extra star positions ``(m, 2)`` with flux 3·10⁴ each (tests).
+    """
+    check_generator(rng)
+    size = int(size)
+    if size < 32:
+        raise ValueError(f"size must be at least 32 pixels, got {size}")
+    check_positive(sigma_px, "sigma_px")
+    if not 0 <= pair_fraction <= 1:
+        raise ValueError(f"pair_fraction must lie in [0, 1], got {pair_fraction}")
+    n = size * size // 500 if n_stars is None else int(n_stars)
+    if n < 1:
+        raise ValueError(f"n_stars must be >= 1, got {n}")
+    xy = rng.uniform(4, size - 5, (n, 2))
+    u = rng.random(n)
+    f_lo, f_hi = 400.0, 1e6
+    flux = 1.0 / (1.0 / f_lo - u * (1.0 / f_lo - 1.0 / f_hi))
+    n_sat = size * size // 20000 if n_saturated is None else int(n_saturated)
+    if n_sat > 0:
+        xy = np.r_[xy, rng.uniform(8, size - 9, (n_sat, 2))]
+        flux = np.r_[flux, 10 ** rng.uniform(5.5, 6.5, n_sat)]
+        n = len(xy)
+    m = round(pair_fraction * n)
+    if m:
+        host = rng.choice(n, m, replace=False)
+        ang = rng.uniform(0, 2 * np.pi, m)
+        sep = rng.uniform(1.5, 3.5, m) * sigma_px
+        cxy = xy[host] + sep[:, None] * np.c_[np.cos(ang), np.sin(ang)]
+        cf = flux[host] * rng.uniform(0.1, 1.0, m)
+        ok = np.all((cxy > 3) & (cxy < size - 4), axis=1)
+        xy = np.r_[xy, cxy[ok]]
+        flux = np.r_[flux, cf[ok]]
+    if xy_extra is not None:
+        ex = as_points(xy_extra, "xy_extra")
+        xy = np.r_[xy, ex]
+        flux = np.r_[flux, np.full(len(ex), 3e4)]
+    yy, xx = np.mgrid[0:size, 0:size].astype(float)
+    bg = sky + gradient * (xx + 0.5 * yy) / size + glow * np.exp(
+        -((xx - 0.7 * size) ** 2 + (yy - 0.3 * size) ** 2) / (2 * (0.25 * size) ** 2))
+    img = bg + render_gaussian_spots((size, size), xy, flux, sigma_px, radius_sigma=5.0)
+    img = rng.poisson(img).astype(float) + rng.normal(0.0, read_noise, img.shape)
+    img = np.clip(np.rint(img), 0, saturation)
+    noise = float(np.sqrt(sky + gradient / 2 + read_noise ** 2))
+    peak = flux / (2 * np.pi * sigma_px ** 2)
+    local_bg = bg[np.clip(np.rint(xy[:, 1]).astype(int), 0, size - 1),
+                  np.clip(np.rint(xy[:, 0]).astype(int), 0, size - 1)]
+    saturated = peak + local_bg >= saturation
+    if len(xy) > 1:
+        from scipy.spatial import cKDTree
+
+        d, _ = cKDTree(xy).query(xy, k=2)
+        blended = d[:, 1] < 3 * sigma_px
+    else:
+        blended = np.zeros(len(xy), bool)
+    return CrowdedField(img, xy, flux, peak / noise, saturated, blended, float(sigma_px), noise)

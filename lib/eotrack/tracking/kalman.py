@@ -364,6 +364,68 @@ def kalman_filter(zs: Any, F: Any, H: Any, Q: Any, R: Any, x0: Any, P0: Any
     return out[:, :, d].copy(), 0.5 * (Ps + np.swapaxes(Ps, 1, 2))
 
 
+def _left_product(F: np.ndarray, P: np.ndarray) -> np.ndarray:
+    """``F @ P`` contracted over the first axis of ``P`` (``(d, ...)``), as a sum of scaled
+    slabs over the non-zeros of ``F`` (a transition matrix is sparse). Element-wise passes over
+    contiguous slabs; no BLAS call, so no thread start-up per step on small matrices."""
+    out = np.empty((F.shape[0], *P.shape[1:]), dtype=np.result_type(F, P))
+    for i in range(F.shape[0]):
+        nz = np.flatnonzero(F[i])
+        if nz.size == 0:
+            out[i] = 0.0
+            continue
+        acc = out[i]
+        f0 = F[i, nz[0]]
+        if f0 == 1.0:
+            acc[...] = P[nz[0]]
+        else:
+            np.multiply(P[nz[0]], f0, out=acc)
+        for k in nz[1:]:
+            f = F[i, k]
+            if f == 1.0:
+                acc += P[k]
+            else:
+                acc += f * P[k]
+    return out
+
+
+def _axis_blocks(F: np.ndarray, H: np.ndarray, Q: np.ndarray, R: np.ndarray, P0: np.ndarray
+                 ) -> tuple[np.ndarray, np.ndarray, float, np.ndarray] | None:
+    """If the model is the same ``o``-state model on each of the ``m`` measured axes, with the
+    state laid out ``[p_1..p_m, v_1..v_m, …]`` (as :func:`constant_acceleration_model`), no
+    coupling between axes and ``R = r I``, return the per-axis ``(F_a, Q_a, r, P0_a)``.
+    Every axis then has the same covariance whenever the measurements of a sequence are missing
+    for all axes at once, so one ``o × o`` covariance per sequence suffices."""
+    m, d = H.shape
+    if d % m or not np.array_equal(H, np.hstack([np.eye(m), np.zeros((m, d - m))])):
+        return None
+    if not (np.allclose(R, R[0, 0] * np.eye(m), rtol=0, atol=0)):
+        return None
+    o = d // m
+    idx = [a + m * np.arange(o) for a in range(m)]
+    blocks = []
+    for M in (F, Q, P0):
+        b0 = M[np.ix_(idx[0], idx[0])]
+        for a in range(m):
+            for b in range(m):
+                blk = M[np.ix_(idx[a], idx[b])]
+                if (a == b and not np.array_equal(blk, b0)) or (a != b and np.any(blk != 0)):
+                    return None
+        blocks.append(b0.copy())
+    return blocks[0], blocks[1], float(R[0, 0]), blocks[2]
+
+
+def _full_from_axis(Pa: np.ndarray, m: int) -> np.ndarray:
+    """``(B, d, d)`` covariances from the per-axis ``(o, o, B)`` block."""
+    o, _, B = Pa.shape
+    out = np.zeros((B, o * m, o * m))
+    blk = Pa.transpose(2, 0, 1)
+    for a in range(m):
+        ia = a + m * np.arange(o)
+        out[:, ia[:, None], ia[None, :]] = blk
+    return out
+
+
 def kalman_filter_batch(zs: Any, F: Any, H: Any, Q: Any, R: Any, x0: Any, P0: Any, *,
                         return_covariances: bool = False
                         ) -> tuple[np.ndarray, np.ndarray]:
@@ -372,8 +434,15 @@ def kalman_filter_batch(zs: Any, F: Any, H: Any, Q: Any, R: Any, x0: Any, P0: An
     The covariance recursion does not depend on the measured values, only on which frames have
     a measurement: while every sequence has had the same pattern (e.g. all measured, or a
     shared occlusion) one covariance and gain serve the whole batch; once the patterns differ
-    each sequence carries its own covariance, updated with element-wise closed forms (for a
-    position-selecting ``H`` with two measurements) instead of per-matrix products.
+    each sequence carries its own covariance. The batch is stored on the last axis (``P`` as
+    ``(d, d, B)``), so the prediction is a few scaled additions of ``(d, B)`` slabs over the
+    non-zeros of ``F`` and the update
+    (for a position-selecting ``H`` with two measurements) element-wise closed forms over
+    length-``B`` vectors; a missing measurement sets that sequence's gain to zero (masking, no
+    branching per sequence). When the model is the same on every measured axis with no
+    coupling (e.g. :func:`constant_acceleration_model` with diagonal, axis-symmetric ``Q``,
+    ``P0`` and ``R = r I``) and measurements are missing for all axes at once, the axes share
+    one ``o × o`` covariance per sequence (``o`` = states per axis), which is what is carried.
 
     Parameters
     ----------
@@ -404,57 +473,99 @@ def kalman_filter_batch(zs: Any, F: Any, H: Any, Q: Any, R: Any, x0: Any, P0: An
         raise ValueError(f"zs must have last dimension {H_.shape[0]} to match H, got {m}")
     if x0a.ndim == 2 and x0a.shape != (B, d):
         raise ValueError(f"x0 must have shape ({d},) or ({B}, {d}), got {x0a.shape}")
-    x = np.array(np.broadcast_to(x0a, (B, d)))
-    xs = np.empty((B, n, d))
+    # structure-of-arrays layout: the batch is the last (contiguous) axis, so every step is a
+    # few element-wise passes over length-B vectors
+    x = np.array(np.broadcast_to(x0a, (B, d)).T)              # (d, B)
+    xs_t = np.empty((n, d, B))
     Ps = np.empty((B, n, d, d)) if return_covariances else None
     have = np.all(np.isfinite(z), axis=2)
-    z0 = np.where(np.isfinite(z), z, 0.0)
+    z0 = np.where(np.isfinite(z), z, 0.0).transpose(1, 2, 0).copy()   # (n, m, B)
     FT = np.ascontiguousarray(F_.T)
     HT = np.ascontiguousarray(H_.T)
     selector = m == 2 and np.array_equal(H_, np.hstack([np.eye(2), np.zeros((2, d - 2))]))
     P = P0_.copy()            # shared while every sequence has had the same measurement pattern
     shared = True
+    Qb = Q_[:, :, None]
+    blocks = _axis_blocks(F_, H_, Q_, R_, P0_)
+    axis_mode = False
+    if blocks is not None:
+        Fa, Qa, r_a, _ = blocks
+        o = d // m
+        idx = [a + m * np.arange(o) for a in range(m)]
+        Qab = Qa[:, :, None]
     for k in range(n):
         h = have[:, k]
         if shared and not (h.all() or not h.any()):
             shared = False
-            P = np.broadcast_to(P, (B, d, d)).copy()
-        x = x @ FT
-        if shared:
+            if blocks is not None:
+                axis_mode = True
+                P = np.array(np.broadcast_to(P[np.ix_(idx[0], idx[0])][:, :, None], (o, o, B)))
+            else:
+                P = np.array(np.broadcast_to(P[:, :, None], (d, d, B)))      # (d, d, B)
+        x = _left_product(F_, x)
+        if axis_mode:
+            # one o × o covariance per sequence serves every axis; scalar gain per axis
+            A = _left_product(Fa, P)
+            P = _left_product(Fa, A.transpose(1, 0, 2))
+            P += Qab
+            c0 = P[:, 0].copy()                                   # (o, B)
+            g = np.where(h, 1.0 / (c0[0] + r_a), 0.0)
+            K = c0 * g
+            P -= K[:, None, :] * c0[None, :, :]
+            for a in range(m):
+                x[idx[a]] += K * (z0[k, a] - x[a])
+            if k % 8 == 0 or k == n - 1:
+                P = 0.5 * (P + P.transpose(1, 0, 2))
+        elif shared:
             P = F_ @ P @ FT + Q_
             if h[0]:
                 PHT = P @ HT
                 K = PHT @ _inv_stack(H_ @ PHT + R_)
                 P = P - K @ PHT.T
                 P = 0.5 * (P + P.T)
-                x += (z0[:, k] - x @ HT) @ K.T
+                x += _left_product(K, z0[k] - _left_product(H_, x))
         else:
-            # F P Fᵀ for the whole stack as two large matrix products
-            FP = np.matmul(F_, P)
-            P = np.matmul(FP, FT)
-            P += Q_
+            # F P Fᵀ for the whole batch: F (F P)ᵀ (P symmetric), each product a sum of
+            # scaled (d, B) slabs over the non-zeros of F
+            A = _left_product(F_, P)
+            P = _left_product(F_, A.transpose(1, 0, 2))
+            P += Qb
             if selector:
-                PHT = P[:, :, :2]
-                a_, b_, c_, e_ = (P[:, 0, 0] + R_[0, 0], P[:, 0, 1] + R_[0, 1],
-                                  P[:, 1, 0] + R_[1, 0], P[:, 1, 1] + R_[1, 1])
+                c0 = P[:, 0].copy()                           # P Hᵀ, column 0   (d, B)
+                c1 = P[:, 1].copy()
+                a_ = c0[0] + R_[0, 0]
+                b_ = c1[0] + R_[0, 1]
+                c_ = c0[1] + R_[1, 0]
+                e_ = c1[1] + R_[1, 1]
                 idet = np.where(h, 1.0 / (a_ * e_ - b_ * c_), 0.0)   # no measurement: K = 0
-                K0 = PHT[:, :, 0] * (e_ * idet)[:, None] - PHT[:, :, 1] * (c_ * idet)[:, None]
-                K1 = PHT[:, :, 1] * (a_ * idet)[:, None] - PHT[:, :, 0] * (b_ * idet)[:, None]
-                P -= K0[:, :, None] * PHT[:, None, :, 0] + K1[:, :, None] * PHT[:, None, :, 1]
-                innov = z0[:, k] - x[:, :2]
-                x += K0 * innov[:, :1] + K1 * innov[:, 1:]
+                K0 = c0 * (e_ * idet) - c1 * (c_ * idet)
+                K1 = c1 * (a_ * idet) - c0 * (b_ * idet)
+                P -= K0[:, None, :] * c0[None, :, :]
+                P -= K1[:, None, :] * c1[None, :, :]
+                i0 = z0[k, 0] - x[0]
+                i1 = z0[k, 1] - x[1]
+                x += K0 * i0 + K1 * i1
             else:
-                PHT = P @ HT
+                Pb = P.transpose(2, 0, 1)
+                PHT = Pb @ HT
                 K = PHT @ _inv_stack(H_ @ PHT + R_)
                 K *= h[:, None, None]
-                P = P - K @ np.swapaxes(PHT, 1, 2)
-                x += np.einsum("bdm,bm->bd", K, z0[:, k] - x @ HT)
+                Pb = Pb - K @ np.swapaxes(PHT, 1, 2)
+                P = np.ascontiguousarray(Pb.transpose(1, 2, 0))
+                x += np.einsum("bdm,bm->db", K, z0[k].T - (H_ @ x).T)
             if k % 8 == 0 or k == n - 1:
-                P = 0.5 * (P + np.swapaxes(P, 1, 2))
-        xs[:, k] = x
+                P = 0.5 * (P + P.transpose(1, 0, 2))
+        xs_t[k] = x
         if Ps is not None:
-            Ps[:, k] = P
-    Pfinal = np.broadcast_to(P, (B, d, d)).copy() if shared else P
+            Ps[:, k] = P if shared else (_full_from_axis(P, m) if axis_mode
+                                         else P.transpose(2, 0, 1))
+    xs = np.ascontiguousarray(xs_t.transpose(2, 0, 1))
+    if shared:
+        Pfinal = np.broadcast_to(P, (B, d, d)).copy()
+    elif axis_mode:
+        Pfinal = _full_from_axis(P, m)
+    else:
+        Pfinal = np.ascontiguousarray(P.transpose(2, 0, 1))
     return xs, (Ps if Ps is not None else Pfinal)
 
 
