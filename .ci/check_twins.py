@@ -36,10 +36,12 @@ pys = ex.sources()
 nbs = {p.stem: p for d in (top, top / "solutions") for p in sorted(d.glob("*.ipynb"))}
 for stem in sorted(set(pys) | set(nbs)):
     if stem not in pys:
-        problems.append(f"notebooks/{stem}.ipynb has no twin notebooks/py/{stem}.py")
+        problems.append(f"{nbs[stem].relative_to(ex.ROOT)} has no twin "
+                        f"{ex.pair_of(nbs[stem]).relative_to(ex.ROOT)}")
         continue
     if stem not in nbs:
-        problems.append(f"notebooks/py/{stem}.py has no notebooks/{stem}.ipynb "
+        problems.append(f"{pys[stem].relative_to(ex.ROOT)} has no "
+                        f"{ex.ipynb_of(pys[stem]).relative_to(ex.ROOT)} "
                         f"(run `.venv/bin/python .ci/execute_notebooks.py {stem}`)")
         continue
     src = jupytext.read(pys[stem])
@@ -50,7 +52,8 @@ for stem in sorted(set(pys) | set(nbs)):
         first = next((i for i, (x, y) in enumerate(zip(a, b, strict=False)) if x != y),
                      min(len(a), len(b)))
         problems.append(f"{stem}: .py and .ipynb differ (first at cell {first}; "
-                        f"{len(a)} vs {len(b)} cells) — run `make execute`")
+                        f"{len(a)} vs {len(b)} cells) — run "
+                        f"`.venv/bin/python .ci/execute_notebooks.py {stem}`")
 
     # -- hygiene of the stored notebook ------------------------------------------------------
     nb = nbformat.read(nbs[stem], as_version=4)

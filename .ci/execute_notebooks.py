@@ -58,12 +58,28 @@ def contents_manager(root: Path = ROOT):
     return cm_class(root_dir=str(root))
 
 
+def _js_numbers(obj):
+    """Integral floats as ints, as JupyterLab's JSON (JavaScript numbers) writes them back."""
+    if isinstance(obj, float) and obj.is_integer() and abs(obj) < 1e21:
+        return int(obj)
+    if isinstance(obj, dict):
+        return {k: _js_numbers(v) for k, v in obj.items()}
+    if isinstance(obj, list):
+        return [_js_numbers(v) for v in obj]
+    return obj
+
+
 def normalise(nb: nbformat.NotebookNode) -> nbformat.NotebookNode:
-    """Set ipykernel's kernelspec and strip execution timestamps (in place; returned)."""
+    """ipykernel's kernelspec, no execution timestamps, numbers as JupyterLab saves them.
+
+    JupyterLab round-trips the whole notebook through JavaScript on save, where ``1.0`` is the
+    number ``1``: a float slider's ``"max": 1.0`` in the saved widget state would come back as
+    ``"max": 1``. Returns a new notebook.
+    """
     nb.metadata["kernelspec"] = dict(KERNELSPEC)
     for cell in nb.cells:
         cell.metadata.pop("execution", None)
-    return nb
+    return nbformat.from_dict(_js_numbers(json.loads(json.dumps(nb))))
 
 
 _MODEL_ID = re.compile(r"(?<![0-9a-f])[0-9a-f]{32}(?![0-9a-f])")
@@ -121,7 +137,7 @@ def pair_of(ipynb: Path) -> Path:
 
 
 def roundtrip_changes(ipynb: Path, root: Path = ROOT) -> list[str]:
-    """Files of the pair that an open -> save through jupytext's contents manager would change.
+    """Files of the pair that an open -> save in JupyterLab would change (server side simulated).
 
     Works on a temporary copy (``root``'s pyproject.toml and the pair); the stored files are
     not touched. Empty list: JupyterLab's save (server side) leaves ``git status`` clean.
@@ -140,7 +156,10 @@ def roundtrip_changes(ipynb: Path, root: Path = ROOT) -> list[str]:
         if pair.exists():
             shutil.copy2(pair, pair_of(copy))
         cm = contents_manager(Path(tmp))
-        cm.save(cm.get(rel.as_posix(), content=True), rel.as_posix())
+        model = cm.get(rel.as_posix(), content=True)
+        # the browser holds the notebook as JavaScript values in between
+        model["content"] = nbformat.from_dict(_js_numbers(json.loads(json.dumps(model["content"]))))
+        cm.save(model, rel.as_posix())
         changed = []
         for orig, new in ((ipynb, copy), (pair, pair_of(copy))):
             if not orig.exists() or orig.read_bytes() != new.read_bytes():
