@@ -185,13 +185,18 @@ def recommendation(table: pd.DataFrame) -> str:
         if m in score.index and m != best:
             txt += (f"; {METHOD_LABELS.get(m, m)}: at most {score.loc[m, 'rel']:.2f}× the best, "
                     f"{score.loc[m, 'med']:.1f}″")
+    wins = worst.idxmin(axis=1).value_counts()
+    txt += ". Smallest worst error per case: " + ", ".join(
+        f"{METHOD_LABELS.get(m, m)} in {k} of {len(worst)}" for m, k in wins.items())
+    if "wransac_hypothesis" in worst.columns and "wransac_hypothesis" not in wins.index:
+        txt += " (WRANSAC with the paper-default hypothesis weights in none)"
     if "ideal" in table["median run"].columns:
         ideal = table["median run"]["ideal"]
         limited = ideal.index[ideal > 3 * ideal.min()]
         if len(limited):
             txt += (". Model-limited cases (even the ideal reference's median-run error exceeds "
                     f"3× the best case's {ideal.min():.0f}″): " + "; ".join(
-                        f"{k.split(',')[0]} ({ideal[k]:.0f}″)" for k in limited)
+                        f"{k.split(' (')[0]} ({ideal[k]:.0f}″)" for k in limited)
                     + " — there no robust estimator helps: the sidereal-rate model is wrong for "
                     "a drifting object; fit ω (or an orbit) instead")
     return txt + "."
@@ -222,7 +227,7 @@ def reproduce(*, quick: bool = False, runner: TrialRunner | None = None,
     budget = budget_table(budget_err, BUDGETS, BUDGET_METHODS)
     sens = threshold_sensitivity(cfg, scenario=sc, n_runs=n_side // 2, runner=runner)
     corr = station_correlations(cfg, step_s=300.0)
-    gen = generalisation(cfg, n_runs=n_side // 2 if quick else n_side, runner=runner)
+    gen = generalisation(cfg, n_runs=n_side, runner=runner)
     gen[f"NORAD {cfg.norad_id} (main), {cfg.station[0]:g}°, {cfg.station[1]:g}°E"] = res
     worst = worst_error_table({k: v for k, v in gen.items()}, coord="both")
     gen_cols = [m for m in GENERALISATION_METHODS if m in worst["worst"].columns]

@@ -267,8 +267,8 @@ def plot_budget(errors: np.ndarray, budgets: tuple[int, ...], methods: tuple[str
     ax.axhline(bound, ls="--", c="k", lw=0.8)
     ax.set_yscale("log")
     ax.set(ylabel="worst |Dec error| over 72 min (″)",
-           title=f"U = {budget} hypotheses, {errors.shape[0]} runs per method (reduced from "
-                 "the 300 of the main run)")
+           title=f"U = {budget} hypotheses, {errors.shape[0]} runs per method (fewer than "
+                 "the main run: a side study)")
     return ax
 
 
