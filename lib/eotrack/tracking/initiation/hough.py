@@ -94,11 +94,18 @@ def hough_accumulator(xy: np.ndarray, d_rho: float = 1.0, d_theta_deg: float = 1
     theta = np.minimum(theta, math.pi - 1e-12)
     n_rho = math.ceil(2 * rmax / dr) + 1
     edges = -rmax + dr * np.arange(n_rho + 1)
-    # ρ + rmax ≥ 0, so truncation is the floor; fold the shift and the scale into one product
-    cs = np.stack([np.cos(theta), np.sin(theta)]) / dr
-    bins = (p @ cs + rmax / dr).astype(np.int32)
+    # ρ + rmax ≥ 0, so truncation is the floor; fold the shift and the scale into one product.
+    # (Broadcast multiply-adds, not a matrix product: a BLAS call on these thin matrices costs
+    # more in thread start-up than the arithmetic.)
+    c, s = np.cos(theta) / dr, np.sin(theta) / dr
+    rho = p[:, 0:1] * c
+    rho += p[:, 1:2] * s
+    rho += rmax / dr
+    bins = rho.astype(np.int32)
     np.minimum(bins, n_rho - 1, out=bins)
-    flat = bins * n_theta + np.arange(n_theta, dtype=np.int32)[None, :]
+    flat = bins.astype(np.intp)
+    flat *= n_theta
+    flat += np.arange(n_theta, dtype=np.intp)
     votes = np.bincount(flat.ravel(), minlength=n_rho * n_theta).reshape(n_rho, n_theta)
     return HoughAccumulator(votes=votes, rho_edges=edges, theta=theta, bins=bins)
 
