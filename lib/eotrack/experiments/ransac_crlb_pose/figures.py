@@ -7,6 +7,7 @@ from typing import Any
 import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
+from matplotlib.ticker import MaxNLocator
 
 from eotrack.plotting import get_ax
 from eotrack.validation import check_choice
@@ -161,6 +162,8 @@ def draw_scene_3d(scene: Any, ax=None, *, frustum_depth: float = 2.0):
     ax.set_xlabel("x_c (m)")
     ax.set_ylabel("y_c (m)")
     ax.set_zlabel("z_c (m, optical axis)")
+    for axis in (ax.xaxis, ax.yaxis):
+        axis.set_major_locator(MaxNLocator(4))
     ax.set_box_aspect((1, 1, 2.5))
     ax.view_init(elev=20, azim=-60)
     ax.legend(fontsize=7, loc="upper left")
@@ -173,7 +176,7 @@ def plot_crlb_ellipsoid(C: np.ndarray, samples: np.ndarray | None = None, *,
     """1-σ ellipsoid of the position (m) or attitude (deg) block of a 6×6 CRLB, with samples.
 
     ``samples`` (m, 6) are Monte Carlo estimator errors ``(δt, δθ)`` drawn as dots; for an
-    efficient estimator about 20 % fall inside the 1-σ ellipsoid (χ²₃ ≤ 1).
+    efficient estimator a share ``P(χ²₃ ≤ n_sigma²)`` falls inside (1-σ: 20 %, 2-σ: 74 %).
     """
     check_choice(block, "block", ["pos", "att"])
     C = np.asarray(C, float)
