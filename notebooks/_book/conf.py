@@ -3,12 +3,12 @@
 Built with the repository root as Sphinx's source directory (so the notebooks' links to
 ``papers_repro/<slug>/REPORT.md`` resolve) and this folder as the configuration directory::
 
-    sphinx-build -b html -W --keep-going -c notebooks/_book . build/book
+    sphinx-build -b html -E -a -W --keep-going -c notebooks/_book . build/book
 
 * The stored notebooks are rendered as they are: nothing is executed (``nb_execution_mode``
   is ``"off"``), so the book shows exactly the outputs committed with each notebook.
 * ``notebooks/00_index`` is the root page. Its table of contents is added here, at build
-  time (``_add_toctree``), so the notebook itself stays a plain landing page in JupyterLab.
+  time (``_on_source_read``), so the notebook itself stays a plain landing page in JupyterLab.
 * LaTeX is typeset by MathJax 3 served from the book itself (``sphinx-mathjax-offline``):
   no page loads anything from the internet.
 * Widgets: a notebook executed by ``.ci/execute_notebooks.py`` stores its widgets' state
@@ -52,7 +52,7 @@ nb_ipywidgets_js = {"widgets/embed.js": {}}  # vendored; the default loads from 
 nb_render_markdown_format = "myst"  # Markdown outputs (computed tables, links) as MyST
 myst_enable_extensions = ["dollarmath", "amsmath", "colon_fence"]
 myst_heading_anchors = 3
-# the paper's text is Chinese in places; numbered equations come from the notebooks' LaTeX
+# equation numbers are the paper's, written as \tag{} in the notebooks: no automatic numbering
 mathjax3_config = {"tex": {"tags": "none"}}
 
 # --- HTML -----------------------------------------------------------------------------------
