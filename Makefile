@@ -37,7 +37,7 @@ lint: setup
 	$(PY) .ci/check_twins.py
 
 unit: setup
-	$(PY) -m pytest -q tests/unit
+	$(PY) -m pytest -q tests/unit tests/exercises
 
 papers: setup
 	$(PY) -m pytest -q tests/papers
