@@ -104,3 +104,80 @@ def test_bad_input():
         E.draw_observation(0, E.build_scenario())
     with pytest.raises(ValueError, match="mode must be one of"):
         E.fig6_trial(np.random.default_rng(0), np.array([5.0]), mode="uniform")
+
+
+def test_package_split_and_reexports():
+    import eotrack.experiments.epipolar.claims as C
+    import eotrack.experiments.epipolar.figures as Fg
+    import eotrack.experiments.epipolar.scenario as S
+    import eotrack.experiments.epipolar.trials as T
+
+    for mod in (S, T, Fg, C):
+        for name in mod.__all__:
+            assert getattr(E, name) is getattr(mod, name)
+    assert E.SLUG == "epipolar" and callable(E.reproduce)
+
+
+def test_fig5_summary_has_paper_beside_ours(rep):
+    f5 = rep.tables["Fig. 5 — paper beside ours"]
+    paper = load_claims("epipolar")["epipolar.fig5"].paper
+    assert f5.loc[0, "paper"] == paper["accuracy_at_best"]
+    assert f5.loc[0, "ours − paper"] == pytest.approx(f5.loc[0, "ours"] - f5.loc[0, "paper"],
+                                                      abs=1e-3)
+
+
+def test_sensor_table_from_config():
+    t2 = E.sensor_table()
+    assert list(t2.columns) == ["ST-APS2-2", "experiment sensor"]
+    assert t2.loc["pixel scale (″/px)", "experiment sensor"] == "14.06"
+    assert t2.loc["resolution (px)", "ST-APS2-2"] == "1024 × 1024"
+    with pytest.raises(TypeError, match="SensorConfig"):
+        E.sensor_table({"x": 3})
+
+
+def test_frame_chain_product_is_the_camera():
+    scen = E.build_scenario()
+    for k in range(4):
+        ch = E.frame_chain(scen, k)
+        assert np.allclose(ch.sensor, scen.cameras[k].R, atol=1e-12)
+        assert np.allclose(ch.orbit @ ch.orbit.T, np.eye(3))
+    with pytest.raises(ValueError, match="k must be"):
+        E.frame_chain(scen, 4)
+    with pytest.raises(ValueError, match="parallel"):
+        E.orbit_frame([7000.0, 0, 0], [1.0, 0, 0])
+
+
+def test_threshold_study_recounts_like_the_sweep():
+    st = E.threshold_study(1.0, 3, n_draws=20)
+    # re-counting the stored pairs equals the sweep of the same seeded draws
+    th = np.arange(0.5, 20.01, 0.5)
+    sw = E.run_sweep(E.build_scenario(), E.ErrorConfig(), th, 20,
+                     runner=TrialRunner(progress=False))
+    c, f = st.counts(th)
+    assert st.n_true == sw.n_true
+    np.testing.assert_allclose(c / st.n_true, sw.accuracy)
+    np.testing.assert_allclose((st.n_true - c + f) / st.n_true, sw.error_rate)
+    assert E.threshold_study(1.0, 3, n_draws=20) is st  # cached
+    r = st.rates([0.0, st.l_max])
+    assert r["missed"][0] == 1.0 and r["false"][0] == 0.0
+    with pytest.raises(ValueError, match="threshold"):
+        st.counts(st.l_max + 1)
+    with pytest.raises(ValueError, match="n_false"):
+        E.threshold_study(1.0, -1)
+
+
+def test_schematics_draw():
+    import matplotlib.pyplot as plt
+
+    scen = E.build_scenario()
+    draw = E.displayed_draw(scen)
+    assert E.plot_epipolar_geometry(scen, pair=(0, 3), target=4) is not None
+    assert E.plot_triangulation(scen, draw.obs, pair=(0, 3), target=4) is not None
+    assert E.plot_frame_chain(scen, 1) is not None
+    fig = E.plot_threshold_tradeoff(E.threshold_study(1.0, 3, n_draws=20), 10.0)
+    assert "L = 10 px" in fig._suptitle.get_text()
+    with pytest.raises(ValueError, match="pair"):
+        E.plot_epipolar_geometry(scen, pair=(1, 1))
+    with pytest.raises(ValueError, match="not seen"):
+        E.plot_triangulation(scen, draw.obs, pair=(1, 2), target=0)
+    plt.close("all")

@@ -134,3 +134,40 @@ def test_bad_input():
         sampson_distances(np.zeros((3, 3)), np.zeros((3, 2)), np.zeros((2, 2)))
     with pytest.raises(ValueError, match="t must have shape"):
         cross_matrix([1, 2])
+
+
+def test_non_finite_and_epipole_rejected_on_the_fast_path():
+    rng = np.random.default_rng(3)
+    F = rng.normal(size=(3, 3))
+    p1 = rng.uniform(0, 512, (4, 2))
+    p2 = rng.uniform(0, 512, (3, 2))
+    for bad_F, bad_1, bad_2, what in ((F, p1, p2.copy(), "pts2"), (F, p1.copy(), p2, "pts1")):
+        arr = bad_2 if what == "pts2" else bad_1
+        arr[1, 0] = np.nan
+        with pytest.raises(ValueError, match=what):
+            epipolar_distances(bad_F, bad_1, bad_2)
+    Fn = F.copy()
+    Fn[2, 2] = np.inf
+    with pytest.raises(ValueError, match="F"):
+        epipolar_distances(Fn, p1, p2)
+    # a point at the epipole of image 1 has no epipolar line
+    Fe = cross_matrix([0.0, 0.0, 1.0])  # epipole of image 1 at pixel (0, 0)
+    at_epipole = np.vstack([p1, [0.0, 0.0]])
+    with pytest.raises(ValueError, match="epipole"), np.errstate(all="ignore"):
+        epipolar_distances(Fe, at_epipole, p2)
+
+
+@settings(max_examples=30, deadline=None)
+@given(st.integers(0, 2**31 - 1), st.integers(1, 40), st.integers(1, 40))
+def test_fast_kernel_matches_opencv_to_1e6_px(seed, n1, n2):
+    rng = np.random.default_rng(seed)
+    F = rng.normal(size=(3, 3))
+    p1 = rng.uniform(0, 512, (n1, 2))
+    p2 = rng.uniform(0, 512, (n2, 2))
+    lines = cv2.computeCorrespondEpilines(p1.reshape(-1, 1, 2), 1, F).reshape(-1, 3)
+    ref = np.abs(lines[:, :2] @ p2.T + lines[:, 2:])
+    got = epipolar_distances(F, p1, p2)
+    assert got.shape == (n1, n2) and got.dtype == np.float64
+    assert np.abs(got - ref).max() < 1e-6
+    # lists and float32 input take the validated path and give the same numbers
+    np.testing.assert_allclose(epipolar_distances(F.tolist(), p1.tolist(), p2), got)

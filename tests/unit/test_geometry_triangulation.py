@@ -71,3 +71,25 @@ def test_bad_input():
         combine_estimates(np.zeros((2, 3)), k=-1)
     with pytest.raises(ValueError, match="n must be >= 2"):
         max_z_score(1)
+
+
+def test_closest_points_ends_of_common_perpendicular():
+    from eotrack.geometry import closest_points_two_rays
+
+    q1, q2 = closest_points_two_rays([0, 0, 0], [1, 0, 0], [0, 1, 2], [0, 0, 1])
+    assert np.allclose(q1, [0, 0, 0]) and np.allclose(q2, [0, 1, 0])
+    rng = np.random.default_rng(0)
+    o1, o2 = rng.normal(size=(2, 5, 3))
+    d1, d2 = rng.normal(size=(2, 5, 3))
+    q1, q2 = closest_points_two_rays(o1, d1, o2, d2)
+    seg = q2 - q1
+    # the segment is perpendicular to both rays, and its midpoint is the triangulation
+    assert np.allclose(np.einsum("ni,ni->n", seg, d1), 0, atol=1e-9)
+    assert np.allclose(np.einsum("ni,ni->n", seg, d2), 0, atol=1e-9)
+    assert np.allclose(0.5 * (q1 + q2), triangulate_two_rays(o1, d1, o2, d2))
+    with pytest.raises(ValueError, match="parallel"):
+        closest_points_two_rays([0, 0, 0], [1, 0, 0], [0, 1, 0], [2, 0, 0])
+    with pytest.raises(ValueError, match="d1"):
+        closest_points_two_rays([0, 0, 0], [0, 0, 0], [0, 1, 0], [1, 0, 0])
+    with pytest.raises(ValueError, match="o1 must end in 3"):
+        closest_points_two_rays([0, 0], [1, 0, 0], [0, 1, 0], [1, 0, 0])
