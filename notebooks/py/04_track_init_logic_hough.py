@@ -517,7 +517,7 @@ def draw(clutter, neighbourhood, centred, verified):
 
 explore = panel(draw,
                 clutter=dropdown("clutter (points/frame)", list(TH.EXPLORE_CLUTTER),
-                                 15.0),
+                                 20.0),
                 neighbourhood=toggle("26-neighbourhood", False),
                 centred=toggle("ρ from the image centre", False),
                 verified=toggle("verified initiator (ours)", False))

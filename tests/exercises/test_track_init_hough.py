@@ -27,7 +27,7 @@ def _right_2():
 
 
 def _right_3():
-    return float(np.mean([r[2]["false"] for r in TH.explore_results(50.0, 6, False, False)]))
+    return float(TH.explore_results(50.0, 6, False, False)["false"].mean())
 
 
 RIGHT = {

@@ -47,8 +47,7 @@ def _ex2_expected() -> float:
 def _ex3_expected() -> float:
     from eotrack.experiments import track_init_hough as TH
 
-    res = TH.explore_results(50.0, 6, False, False)
-    return float(np.mean([r[2]["false"] for r in res]))
+    return float(TH.explore_results(50.0, 6, False, False)["false"].mean())
 
 
 register("track_init_hough.1", FunctionAnswer(
@@ -72,7 +71,7 @@ register("track_init_hough.3", NumericAnswer(
     "procedure (verified off), the 6-neighbourhood and ρ from the image corner. What is the mean "
     "number of false tracks per scene over the panel's scenes?",
     expected=_ex3_expected, rtol=1e-2,
-    hint="read it from the left panel's title, or average the 'false' scores of "
+    hint="read it from the left panel's title, or average the 'false' entry of "
          "explore_results(50.0, 6, False, False)"))
 
 register("track_init_hough.4", Choice(

@@ -82,13 +82,13 @@ display(Markdown(f"Expected {expected:.2f} chance tracks; the verified initiator
 
 # %%
 res = TH.explore_results(50.0, 6, False, False)
-mean_false = float(np.mean([r[2]["false"] for r in res]))
+mean_false = float(res["false"].mean())
 assert check("track_init_hough.3", mean_false)
 ours = TH.explore_results(50.0, 6, False, True)
 display(Markdown(
     f"Paper's procedure: {mean_false:.1f} false tracks per scene, chance rate "
-    f"{np.mean([r[3] for r in res]):.1f}; verified initiator: "
-    f"{np.mean([r[2]['false'] for r in ours]):.1f} (over {len(res)} scenes)."))
+    f"{res['chance'].mean():.1f}; verified initiator: {ours['false'].mean():.1f} "
+    f"(over {len(res['false'])} scenes)."))
 
 # %% [markdown]
 # Cells δρ × δθ × δv are much larger than the noise disc at σ = 0.3 px, so cell counting

@@ -277,8 +277,8 @@ def plot_scene_tracks(scene: Scene, tracks: list[Track], ax: plt.Axes | None = N
 
 
 # --------------------------------------------------------------------------- explore
-EXPLORE_CLUTTER = (5.0, 15.0, 30.0, 50.0)
-EXPLORE_SCENES = 6
+EXPLORE_CLUTTER = (5.0, 20.0, 50.0)
+EXPLORE_SCENES = 4
 
 
 def _explore_initiator(neighbourhood: int, centred: bool, verified: bool,
@@ -304,52 +304,79 @@ def _explore_scenes(clutter: float) -> tuple:
 
 @cache
 def explore_results(clutter: float, neighbourhood: int = 6, centred: bool = False,
-                    verified: bool = False) -> tuple:
+                    verified: bool = False) -> dict:
     """Cached results of one modified-Hough variant on the Explore panel's scenes.
 
-    Returns a tuple of ``(scene, tracks, score, chance)`` per scene (``EXPLORE_SCENES`` seeded
-    planted scenes at the given clutter level; ``neighbourhood`` and ``centred`` act on the
-    paper's literal procedure, ``verified`` selects our initiator).
+    ``EXPLORE_SCENES`` seeded planted scenes at the given clutter level; ``neighbourhood`` and
+    ``centred`` (ρ from the image centre) act on the paper's literal procedure, ``verified``
+    selects our initiator. Returns per-scene arrays ``correct``, ``eligible``, ``false`` and
+    ``chance``, and what the panel draws of the first scene: ``detections`` ``(n, 2)``,
+    ``truth`` ``(frames, objects, 2)`` and ``tracks`` (a list of ``(positions, correct)``).
     """
     cfg = PlantedConfig()
     ini = _explore_initiator(int(neighbourhood), bool(centred), bool(verified), cfg)
-    out = []
-    for scene in _explore_scenes(float(clutter)):
+    out = {"correct": [], "eligible": [], "false": [], "chance": []}
+    for i, scene in enumerate(_explore_scenes(float(clutter))):
         tracks = ini.initiate(scene.frames)
-        chance = chi2_chance_tracks(scene, v_min=cfg.v_gate_px_s[0], v_max=cfg.v_gate_px_s[1],
-                                    sigma_px=cfg.sigma_px, alpha=cfg.alpha, width=cfg.width_px)
-        out.append((scene, tracks, score_tracks(tracks, scene), chance))
-    return tuple(out)
+        sc = score_tracks(tracks, scene)
+        out["correct"].append(sc["correct"])
+        out["eligible"].append(sc["eligible"])
+        out["false"].append(sc["false"])
+        out["chance"].append(chi2_chance_tracks(
+            scene, v_min=cfg.v_gate_px_s[0], v_max=cfg.v_gate_px_s[1], sigma_px=cfg.sigma_px,
+            alpha=cfg.alpha, width=cfg.width_px))
+        if i == 0:
+            fr = validate_frames(scene.frames)
+            out["detections"] = np.concatenate([xy for _, xy in scene.frames])
+            out["truth"] = np.array(scene.truth_xy)
+            out["tracks"] = []
+            for tr in tracks:
+                ids = {int(scene.labels[f][d]) for f, d in tr.hits if f <= tr.confirmed_at}
+                out["tracks"].append((tr.positions(fr), len(ids) == 1 and min(ids) >= 0))
+    for k in ("correct", "eligible", "false", "chance"):
+        out[k] = np.asarray(out[k], dtype=float)
+    return out
 
 
-def plot_explore(clutter: float = 15.0, neighbourhood: int = 6, centred: bool = False,
+def plot_explore(clutter: float = 20.0, neighbourhood: int = 6, centred: bool = False,
                  verified: bool = False):
-    """The Explore panel's figure: recall and false tracks aggregated over the panel's scenes
-    (left) and the first scene's tracks (right) for one modified-Hough variant."""
+    """The Explore panel's figure: recall and false tracks per scene over the panel's scenes
+    against the chance rate (left) and the first scene's tracks (right), for one variant."""
     res = explore_results(float(clutter), int(neighbourhood), bool(centred), bool(verified))
     fig, axes = plt.subplots(1, 2, figsize=(10.5, 4.3))
-    correct = np.array([r[2]["correct"] for r in res])
-    elig = np.array([r[2]["eligible"] for r in res])
-    false = np.array([r[2]["false"] for r in res])
-    chance = np.array([r[3] for r in res])
-    x = np.arange(len(res))
+    x = np.arange(len(res["false"]))
     ax = axes[0]
-    ax.bar(x - 0.2, correct / np.maximum(elig, 1), 0.4, color="tab:blue", label="recall")
+    ax.bar(x - 0.2, res["correct"] / np.maximum(res["eligible"], 1), 0.4, color="tab:blue",
+           label="recall")
     ax.set_ylim(0, 1.05)
     ax.set_ylabel("recall per scene")
     ax.set_xlabel("scene")
+    ax.set_xticks(x)
     ax2 = ax.twinx()
-    ax2.bar(x + 0.2, false, 0.4, color="tab:red", label="false tracks")
-    ax2.plot(x + 0.2, chance, "k_", ms=14, mew=2, label="chance rate (χ² 3-of-4)")
+    ax2.bar(x + 0.2, res["false"], 0.4, color="tab:red", label="false tracks")
+    ax2.plot(x + 0.2, res["chance"], "k_", ms=14, mew=2, label="chance rate (χ² 3-of-4)")
     ax2.set_ylabel("false tracks per scene")
     h1, l1 = ax.get_legend_handles_labels()
     h2, l2 = ax2.get_legend_handles_labels()
     ax.legend(h1 + h2, l1 + l2, fontsize=7, loc="upper left")
     name = ("ours (verified)" if verified else
             f"paper, {neighbourhood}-nbhd, ρ from the {'centre' if centred else 'corner'}")
-    ax.set_title(f"{name}: recall {correct.sum() / max(elig.sum(), 1):.2f}, "
-                 f"{false.mean():.1f} false/scene (chance {chance.mean():.1f}) — "
-                 f"{len(res)} scenes only", fontsize=8.5)
-    plot_scene_tracks(res[0][0], list(res[0][1]), ax=axes[1], title="scene 0: ")
+    ax.set_title(f"{name}: recall {res['correct'].sum() / max(res['eligible'].sum(), 1):.2f}, "
+                 f"{res['false'].mean():.1f} false/scene (chance {res['chance'].mean():.1f}) — "
+                 f"{len(x)} scenes only", fontsize=8.5)
+    ax = axes[1]
+    ax.plot(*res["detections"].T, ".", color="0.7", ms=3)
+    for i in range(res["truth"].shape[1]):
+        ax.plot(*res["truth"][:, i].T, ":", color="k", lw=1)
+    for pos, good in res["tracks"]:
+        ax.plot(*pos.T, "-o" if good else "-x", ms=3, color="tab:green" if good else "tab:red")
+    w = PlantedConfig().width_px
+    ax.set_xlim(0, w)
+    ax.set_ylim(w, 0)
+    ax.set_aspect("equal")
+    ax.set_xlabel("x (px)")
+    ax.set_ylabel("y (px)")
+    ax.set_title(f"scene 0: {int(res['correct'][0])}/{int(res['eligible'][0])} objects, "
+                 f"{int(res['false'][0])} false (green: correct, red: false)", fontsize=9)
     fig.tight_layout()
     return fig
