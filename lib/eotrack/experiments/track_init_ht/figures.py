@@ -295,7 +295,7 @@ def _explore_artists() -> dict[str, Any]:
     """Build the Explore figure once: two log axes, their lines and markers (no pyplot state)."""
     if _EXPLORE:
         return _EXPLORE
-    fig = Figure(figsize=(11, 3.9))
+    fig = Figure(figsize=(10, 3.6), dpi=90)  # ~30 % fewer pixels to render per redraw
     a1, a2 = fig.subplots(1, 2)
     x = np.arange(1, 3)
     # plain text only (no mathtext): a redraw must not re-parse TeX-like labels
