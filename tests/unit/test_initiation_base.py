@@ -37,3 +37,22 @@ def test_protocol():
 def test_bad_frames(frames, exc, match):
     with pytest.raises(exc, match=match):
         validate_frames(frames)
+
+
+def test_handoff_confirm_batch_equals_one_by_one():
+    import pytest
+    from eotrack.tracking.initiation import Frame, TrackHandOff
+
+    rng = np.random.default_rng(4)
+    frames = [Frame(float(k), rng.uniform(0, 100, (5, 2))) for k in range(5)]
+    hits = [[(0, 1), (1, 2), (3, 0)], [(1, 0), (2, 4), (3, 3), (4, 1)]]
+    one, batch = TrackHandOff(5.0), TrackHandOff(5.0)
+    for h in hits:
+        one.confirm(h, 4, frames, info={"m": 1})
+    fi = np.array([[0, 1, 3, -1], [1, 2, 3, 4]])
+    di = np.array([[1, 2, 0, -1], [0, 4, 3, 1]])
+    batch.confirm_batch(np.maximum(fi, 0), di, 4, frames, info={"m": 1})
+    assert [t.hits for t in one.tracks()] == [t.hits for t in batch.tracks()]
+    np.testing.assert_allclose(one.predict(5.0), batch.predict(5.0))
+    with pytest.raises(ValueError, match="2-D"):
+        batch.confirm_batch(np.zeros(3), np.zeros(3), 4, frames)

@@ -185,6 +185,66 @@ class TrackHandOff:
         xy = np.array([frames[f].xy[d] for f, d in last], float).reshape(-1, 2)
         self._pending.append((t, xy[:, 0], xy[:, 1], len(last)))
 
+    def confirm_batch(self, frame_idx: np.ndarray, det_idx: np.ndarray, confirmed_at: int,
+                      frames: Sequence[Frame], info: dict | Sequence[dict] | None = None) -> None:
+        """Register several newly confirmed tracks at once.
+
+        Parameters
+        ----------
+        frame_idx, det_idx
+            ``(n_tracks, k)`` frame and detection indices of the hits, one row per track,
+            sorted by frame within a row; ``det_idx < 0`` marks an empty slot (empty slots
+            after the row's hits are not allowed to interleave with them).
+        confirmed_at
+            Frame index of the confirmation.
+        frames
+            The frames the indices refer to.
+        info
+            One dict for all tracks or one per track.
+        """
+        fi = np.asarray(frame_idx, dtype=np.int64)
+        di = np.asarray(det_idx, dtype=np.int64)
+        if fi.shape != di.shape or fi.ndim != 2:
+            raise ValueError(f"frame_idx and det_idx must be 2-D of one shape, got {fi.shape} "
+                             f"and {di.shape}")
+        n = len(fi)
+        if n == 0:
+            return
+        self._flush()
+        ok = di >= 0
+        infos = [dict(info or {}) for _ in range(n)] if info is None or isinstance(info, dict) \
+            else [dict(x) for x in info]
+        for f_row, d_row, o_row in zip(fi.tolist(), di.tolist(), ok.tolist()):
+            self._hits.append([(f, d) for f, d, o in zip(f_row, d_row, o_row) if o])
+        self._confirmed += [int(confirmed_at)] * n
+        self._info += infos
+        # the last (up to) four hits, right-aligned, for the prediction arrays
+        k = self._KEEP
+        times = np.array([f.time_s for f in frames])
+        order = np.argsort(~ok, axis=1, kind="stable")  # hits first, in frame order
+        fs = np.take_along_axis(fi, order, 1)
+        ds = np.take_along_axis(di, order, 1)
+        nh = ok.sum(axis=1)
+        t = np.zeros((n, k))
+        x = np.zeros((n, k))
+        y = np.zeros((n, k))
+        for j in range(k):
+            src = nh - k + j  # column of the hit that lands in slot j
+            have = src >= 0
+            r = np.flatnonzero(have)
+            if len(r) == 0:
+                continue
+            f = fs[r, src[r]]
+            d = ds[r, src[r]]
+            t[r, j] = times[f]
+            xy = np.array([frames[ff].xy[dd] for ff, dd in zip(f.tolist(), d.tolist())])
+            x[r, j] = xy[:, 0]
+            y[r, j] = xy[:, 1]
+        self._t = np.concatenate([self._t, t])
+        self._x = np.concatenate([self._x, x])
+        self._y = np.concatenate([self._y, y])
+        self._n = np.concatenate([self._n, np.minimum(nh, k)])
+
     def _flush(self) -> None:
         if not self._pending:
             return

@@ -118,11 +118,11 @@ class _LogicRun:
         self.xy_flat = np.concatenate(xys) if self.off[-1] else np.zeros((0, 2))
         self.handoff = TrackHandOff(cfg.handoff_gate_px)
         m = cfg.m
-        self.start = np.zeros(0, dtype=np.int64)
-        self.hits = np.zeros((0, m), dtype=np.int64)
-        self.count = np.zeros(0, dtype=np.int64)
-        self.last = np.zeros(0, dtype=np.int64)
-        self.prev = np.zeros(0, dtype=np.int64)
+        self.start = np.zeros(0, dtype=np.int32)
+        self.hits = np.zeros((0, m), dtype=np.int32)
+        self.count = np.zeros(0, dtype=np.int32)
+        self.last = np.zeros(0, dtype=np.int32)
+        self.prev = np.zeros(0, dtype=np.int32)
         self.cost = np.zeros(0)
         self.frames = [Frame(float(t), x) for t, x in zip(times, xys)]
 
@@ -175,14 +175,22 @@ class _LogicRun:
                     nb = np.hypot(b[:, 0], b[:, 1])
                     cosang = (a[:, 0] * b[:, 0] + a[:, 1] * b[:, 1]) / np.maximum(na * nb, 1e-300)
                     ok &= cosang < np.cos(np.radians(cfg.min_angle_deg))
-                ti, dj, d = ti[ok], dj[ok], np.sqrt(d2[ok])
-                # nearest per track (ties: lowest canonical index, i.e. x then y)
-                o = np.lexsort((dj, d, ti))
-                ti, dj, d = ti[o], dj[o], d[o]
-                first = np.r_[True, ti[1:] != ti[:-1]] if len(ti) else np.zeros(0, bool)
-                rows = ext[ti[first]]
-                self.hits[rows, slot_k[rows]] = ids_k[dj[first]]
-                self.cost[rows] += d[first]
+                ti, dj, d2 = ti[ok], dj[ok], d2[ok]
+                # nearest per track (ties: lowest canonical index, i.e. x then y); the
+                # matches come ordered by track, so per-track minima are segment reductions
+                if len(ti):
+                    start = np.flatnonzero(np.r_[True, ti[1:] != ti[:-1]])
+                    cnt = np.diff(np.r_[start, len(ti)])
+                    best = d2 == np.repeat(np.minimum.reduceat(d2, start), cnt)
+                    big = np.iinfo(np.int32).max
+                    pick = np.minimum.reduceat(np.where(best, dj, big), start)
+                    ti, dj = ti[start], pick
+                    d = np.sqrt(np.minimum.reduceat(d2, start))
+                else:
+                    d = np.zeros(0)
+                rows = ext[ti]
+                self.hits[rows, slot_k[rows]] = ids_k[dj]
+                self.cost[rows] += d
                 self.prev[rows] = self.last[rows]
                 self.last[rows] = slot_k[rows]
                 self.count[rows] += 1
@@ -204,10 +212,10 @@ class _LogicRun:
                                 np.zeros(len(hi))))
         # --- new heads
         if len(ids_k):
-            nh = np.full((len(ids_k), m), -1, dtype=np.int64)
+            nh = np.full((len(ids_k), m), -1, dtype=np.int32)
             nh[:, 0] = ids_k
-            z = np.zeros(len(ids_k), dtype=np.int64)
-            new.append((np.full(len(ids_k), k, dtype=np.int64), nh, z + 1, z, z,
+            z = np.zeros(len(ids_k), dtype=np.int32)
+            new.append((np.full(len(ids_k), k, dtype=np.int32), nh, z + 1, z, z,
                         np.zeros(len(ids_k))))
         if new:
             for i, name in enumerate(self._FIELDS):
@@ -253,10 +261,7 @@ class _LogicRun:
         self.avail[g[ok]] = False
         fr = np.searchsorted(self.off, np.maximum(g, 0), side="right") - 1
         det = np.where(ok, g - self.off[fr], -1)
-        label = self.cfg.label
-        for f_row, d_row in zip(fr.tolist(), det.tolist()):
-            hits = [(f, d) for f, d in zip(f_row, d_row) if d >= 0]
-            self.handoff.confirm(hits, k, self.frames, info={"method": label})
+        self.handoff.confirm_batch(fr, det, k, self.frames, info={"method": self.cfg.label})
         done = np.zeros(len(self.start), dtype=bool)
         done[rows] = True
         h = self.hits

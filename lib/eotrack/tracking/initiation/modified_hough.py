@@ -744,7 +744,7 @@ class _VerifiedEngine:
         sa, sb = sa[ok], sb[ok]
         pred = (1 + tau) * b[sb] - tau * a[sa]
         it_all = np.flatnonzero(self.available[ft])
-        qi, pi, _ = PointGrid(self.xys[ft][it_all], r).query(pred, r)
+        qi, pi, _ = PointGrid(self.xys[ft][it_all], r).query(pred, r, sort=False)
         ga = self.off[fa] + ia_all[sa[qi]]
         gb = self.off[fb] + ib_all[sb[qi]]
         gt = self.off[ft] + it_all[pi]

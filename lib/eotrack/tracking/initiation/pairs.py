@@ -130,8 +130,8 @@ class PointGrid:
     def __len__(self) -> int:
         return len(self.xy)
 
-    def query(self, q: np.ndarray, radius: float | np.ndarray | None = None,
-              ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    def query(self, q: np.ndarray, radius: float | np.ndarray | None = None, *,
+              sort: bool = True) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Every (query, point) pair closer than ``radius``.
 
         Parameters
@@ -141,10 +141,13 @@ class PointGrid:
         radius
             Scalar or per-query radius, at most the grid's ``radius`` (default: the grid's).
 
+        sort
+            Order the result by query index (default); ``False`` skips that sort.
+
         Returns
         -------
         qi, pi : numpy.ndarray
-            Query index and point index of each close pair (ordered by query).
+            Query index and point index of each close pair (ordered by query if ``sort``).
         d2 : numpy.ndarray
             Squared distances.
         """
@@ -186,6 +189,8 @@ class PointGrid:
         rr = r if np.ndim(r) == 0 else np.asarray(r)[qi]
         ok = d2 <= rr * rr
         qi, pi, d2 = qi[ok], pi[ok], d2[ok]
+        if not sort:
+            return qi, pi, d2
         o = np.argsort(qi, kind="stable")
         return qi[o], pi[o], d2[o]
 
