@@ -36,7 +36,7 @@ from eotrack.validation import check_int, check_positive
 
 from .base import Frame, Track, validate_frames
 from .gating import TrackHandOff, canonical_order, check_velocity_gate
-from .pairs import PointGrid, greedy_disjoint
+from .pairs import PointGrid, greedy_disjoint, occupancy_image
 
 __all__ = ["AngleConstrainedLogicInitiator", "LogicInitiator", "logic_false_track_rate"]
 
@@ -90,7 +90,10 @@ class LogicInitiator:
         fr = validate_frames(frames)
         perms = [canonical_order(f.xy) for f in fr]
         xys = [f.xy[p] for f, p in zip(fr, perms)]
-        return _LogicRun(self, xys, np.array([f.time_s for f in fr])).run(perms)
+        times = np.array([f.time_s for f in fr])
+        if self.n == 3:
+            return _TripletLogicRun(self, xys, times).run(perms)
+        return _LogicRun(self, xys, times).run(perms)
 
 
 def AngleConstrainedLogicInitiator(n: int = 3, m: int = 4, *, min_angle_deg: float = 90.0,
@@ -267,6 +270,122 @@ class _LogicRun:
         h = self.hits
         clash = np.any((h >= 0) & ~self.avail[np.maximum(h, 0)], axis=1)
         self._select(~(done | clash))
+
+
+class _TripletLogicRun(_LogicRun):
+    """The n = 3 logic without storing tentative tracks (internal; same result as
+    :class:`_LogicRun`).
+
+    With n = 3 a tentative track is a gated pair (head in frame f₁, second point in f₂) until it
+    takes a third point, when it is confirmed or deleted. So at frame k the tracks that can
+    become ready are the pairs of every (f₁, f₂) with ``k − m + 1 ≤ f₁ < f₂ < k`` that have not
+    taken a point in a frame between f₂ and k. Their constant-velocity predictions at k are an
+    outer sum over the two frames' detections, looked up in a dilated occupancy image of frame k
+    (one gather per pair); only pairs that land near a detection are gated and searched
+    exactly. A boolean matrix per (f₁, f₂) remembers the pairs that already took a point.
+    """
+
+    def __init__(self, cfg: LogicInitiator, xys: list[np.ndarray], times: np.ndarray):
+        super().__init__(cfg, xys, times)
+        self.resolved: dict[tuple[int, int], np.ndarray] = {}
+        self._occ_cache: tuple = (-1, None)
+
+    def _frame(self, k: int) -> None:
+        cfg = self.cfg
+        m = cfg.m
+        self.handoff.claim(k, self.times[k], self.xys[k], self._avail_view(k))
+        lo = max(0, k - m + 1)
+        for key in [key for key in self.resolved if key[0] < lo]:
+            del self.resolved[key]
+        ids_k = np.flatnonzero(self._avail_view(k))
+        ready = []
+        for f1 in range(lo, k - 1):
+            for f2 in range(f1 + 1, k):
+                key = (f1, f2)
+                if key not in self.resolved:
+                    self.resolved[key] = np.zeros((len(self.xys[f1]), len(self.xys[f2])), bool)
+                if len(ids_k):
+                    got = self._extend_pairs(f1, f2, k, ids_k)
+                    if got is not None:
+                        ready.append(got)
+        if ready:
+            self._confirm_ready(k, *(np.concatenate(c) for c in zip(*ready)))
+
+    def _occ(self, k: int, pk: np.ndarray, r: float):
+        if self._occ_cache[0] != k:
+            self._occ_cache = (k, occupancy_image(pk, r))
+        return self._occ_cache[1]
+
+    def _extend_pairs(self, f1: int, f2: int, k: int, ids_k: np.ndarray):
+        """Nearest gated third point at k of every unresolved pair (f1 → f2)."""
+        cfg = self.cfg
+        a_id = np.flatnonzero(self._avail_view(f1))
+        b_id = np.flatnonzero(self._avail_view(f2))
+        if len(a_id) == 0 or len(b_id) == 0:
+            return None
+        a, b = self.xys[f1][a_id], self.xys[f2][b_id]
+        pk = self.xys[k][ids_k]
+        t1, t2, tk = self.times[f1], self.times[f2], self.times[k]
+        tau = (tk - t2) / (t2 - t1)
+        r = cfg.gate_px
+        occ, x0, y0, w, h = self._occ(k, pk, r)
+        f32 = np.float32
+        qx = ((1 + tau) * b[:, 0] - x0).astype(f32)[None, :] + (-tau * a[:, 0]).astype(f32)[:, None]
+        qy = ((1 + tau) * b[:, 1] - y0).astype(f32)[None, :] + (-tau * a[:, 1]).astype(f32)[:, None]
+        np.clip(qx, 0, w - 1, out=qx)
+        np.clip(qy, 0, h - 1, out=qy)
+        key = qy.astype(np.int32)
+        key *= w
+        key += qx.astype(np.int32)
+        near = occ[key]
+        near &= ~self.resolved[(f1, f2)][np.ix_(a_id, b_id)]
+        sa, sb = np.nonzero(near)
+        if len(sa) == 0:
+            return None
+        d = b[sb] - a[sa]
+        v2 = (d[:, 0] ** 2 + d[:, 1] ** 2) / (t2 - t1) ** 2
+        ok = (v2 >= cfg.v_min**2) & (v2 <= cfg.v_max**2)
+        sa, sb = sa[ok], sb[ok]
+        pa, pb = a[sa], b[sb]
+        pred = pb + (pb - pa) * tau
+        ti, dj, d2 = PointGrid(pk, r).query(pred)
+        dt = tk - t2
+        seg2 = ((pk[dj, 0] - pb[ti, 0]) ** 2 + (pk[dj, 1] - pb[ti, 1]) ** 2) / dt**2
+        ok = (seg2 >= cfg.v_min**2) & (seg2 <= cfg.v_max**2)
+        if cfg.min_angle_deg is not None:
+            u = pa[ti] - pb[ti]
+            v = pk[dj] - pb[ti]
+            nu = np.hypot(u[:, 0], u[:, 1])
+            nv = np.hypot(v[:, 0], v[:, 1])
+            cosang = (u[:, 0] * v[:, 0] + u[:, 1] * v[:, 1]) / np.maximum(nu * nv, 1e-300)
+            ok &= cosang < np.cos(np.radians(cfg.min_angle_deg))
+        ti, dj, d2 = ti[ok], dj[ok], d2[ok]
+        if len(ti) == 0:
+            return None
+        # nearest per pair (ties: lowest canonical index); matches come ordered by pair
+        start = np.flatnonzero(np.r_[True, ti[1:] != ti[:-1]])
+        cnt = np.diff(np.r_[start, len(ti)])
+        best = d2 == np.repeat(np.minimum.reduceat(d2, start), cnt)
+        pick = np.minimum.reduceat(np.where(best, dj, np.iinfo(np.int64).max), start)
+        pair = ti[start]
+        ga = a_id[sa[pair]]
+        gb = b_id[sb[pair]]
+        self.resolved[(f1, f2)][ga, gb] = True
+        hits = np.stack([self.off[f1] + ga, self.off[f2] + gb, self.off[k] + ids_k[pick]], 1)
+        return hits, np.sqrt(np.minimum.reduceat(d2, start))
+
+    def _confirm_ready(self, k: int, hits: np.ndarray, cost: np.ndarray) -> None:
+        last = hits[:, 2]
+        order = np.lexsort((self.xy_flat[last, 1], self.xy_flat[last, 0], cost))
+        h = hits[order]
+        win = greedy_disjoint(h, np.arange(len(h)), len(self.avail))
+        if len(win) == 0:
+            return
+        g = h[win]
+        self.avail[g.ravel()] = False
+        fr = np.searchsorted(self.off, g, side="right") - 1
+        self.handoff.confirm_batch(fr, g - self.off[fr], k, self.frames,
+                                   info={"method": self.cfg.label})
 
 
 def logic_false_track_rate(n: int, m: int, clutter_per_frame: float, pair_prob: Sequence[float],

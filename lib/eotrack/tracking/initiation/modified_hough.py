@@ -43,7 +43,7 @@ from eotrack.validation import as_finite_array, check_int, check_positive
 
 from .base import Frame, Track, validate_frames
 from .gating import TrackHandOff, canonical_order, check_velocity_gate
-from .pairs import PointGrid, cv_fit_batch, greedy_disjoint
+from .pairs import PointGrid, cv_fit_batch, greedy_disjoint, occupancy_image
 
 __all__ = ["ModifiedHoughInitiator", "ModifiedHoughRun", "line_through_points", "pair_parameters"]
 
@@ -687,27 +687,8 @@ class _VerifiedEngine:
 
     # -- the third-point search ------------------------------------------------
     def _occupancy(self, f: int, r: float):
-        """Image (1 px pixels) marking every pixel that has a detection of frame ``f`` within
-        ``r`` of some point of it; zero border so clipped look-ups land on empty pixels."""
-        p = self.xys[f][self.available[f]]
-        rr = r + 0.7072  # pixel half-diagonal
-        n = math.ceil(rr)
-        x0 = math.floor(float(p[:, 0].min()) - rr) - 1
-        y0 = math.floor(float(p[:, 1].min()) - rr) - 1
-        w = math.ceil(float(p[:, 0].max()) + rr) - x0 + 2
-        h = math.ceil(float(p[:, 1].max()) + rr) - y0 + 2
-        occ = np.zeros(h * w, dtype=bool)
-        o = np.arange(-n, n + 1)
-        bx = np.floor(p[:, 0] - x0).astype(np.int64)
-        by = np.floor(p[:, 1] - y0).astype(np.int64)
-        cx = bx[:, None] + o[None, :]
-        cy = by[:, None] + o[None, :]
-        ex = (cx + x0 + 0.5 - p[:, 0:1]) ** 2
-        ey = (cy + y0 + 0.5 - p[:, 1:2]) ** 2
-        near = ex[:, None, :] + ey[:, :, None] <= rr * rr  # (n_pts, dy, dx)
-        pi, iy, ix = np.nonzero(near)
-        occ[cy[pi, iy] * w + cx[pi, ix]] = True
-        return occ, x0, y0, w, h
+        """Occupancy image of frame ``f``'s available detections for radius ``r``."""
+        return occupancy_image(self.xys[f][self.available[f]], r)
 
     def _triplets(self, fa: int, fb: int, ft: int) -> np.ndarray:
         """Triplets (seed in ``fa``, seed in ``fb``, third in ``ft``) passing the χ² disc test

@@ -23,7 +23,7 @@ import numpy as np
 
 from eotrack.validation import as_finite_array, check_positive
 
-__all__ = ["PointGrid", "cv_fit_batch", "gated_pairs", "greedy_disjoint"]
+__all__ = ["PointGrid", "cv_fit_batch", "gated_pairs", "greedy_disjoint", "occupancy_image"]
 
 _CHUNK = 4_000_000  # broadcast at most this many pairs at once (memory)
 
@@ -193,6 +193,47 @@ class PointGrid:
             return qi, pi, d2
         o = np.argsort(qi, kind="stable")
         return qi[o], pi[o], d2[o]
+
+
+def occupancy_image(xy: np.ndarray, radius: float) -> tuple[np.ndarray, int, int, int, int]:
+    """A 1-pixel image marking where a query may lie within ``radius`` of a point.
+
+    Pixel ``(ix, iy)`` covers ``[x0 + ix, x0 + ix + 1) × [y0 + iy, y0 + iy + 1)``; it is marked
+    when some pixel within ``radius + √2`` (pixel distance) holds a point, so every position
+    within ``radius`` of a point falls on a marked pixel (a superset: marked pixels are then
+    checked exactly). A border of empty pixels surrounds the points, so look-ups clipped to the
+    image land on empty pixels. Built as one dilation (``cv2.dilate``) of the points' pixels.
+
+    Parameters
+    ----------
+    xy
+        Points ``(n, 2)``, ``n ≥ 1``.
+    radius
+        Query radius (pixels, > 0).
+
+    Returns
+    -------
+    occ : numpy.ndarray
+        Flattened ``uint8`` image (row-major, ``h × w``).
+    x0, y0, w, h : int
+        Origin and size of the image.
+    """
+    import cv2
+
+    p = as_finite_array(xy, "xy", shape=(None, 2))
+    if len(p) == 0:
+        raise ValueError("xy must hold at least one point")
+    r = check_positive(radius, "radius")
+    n = math.ceil(r + math.sqrt(2.0))
+    x0 = math.floor(float(p[:, 0].min())) - n - 1
+    y0 = math.floor(float(p[:, 1].min())) - n - 1
+    w = math.floor(float(p[:, 0].max())) - x0 + n + 2
+    h = math.floor(float(p[:, 1].max())) - y0 + n + 2
+    img = np.zeros((h, w), dtype=np.uint8)
+    img[np.floor(p[:, 1] - y0).astype(np.int64), np.floor(p[:, 0] - x0).astype(np.int64)] = 1
+    o = np.arange(-n, n + 1)
+    kernel = ((o[:, None] ** 2 + o[None, :] ** 2) <= (r + math.sqrt(2.0)) ** 2).astype(np.uint8)
+    return cv2.dilate(img, kernel).ravel(), x0, y0, w, h
 
 
 def cv_fit_batch(t: np.ndarray, x: np.ndarray, y: np.ndarray, mask: np.ndarray,
