@@ -523,18 +523,13 @@ rep.scorecard[["claim", "paper", "ours", "status", "note"]]
 # %%
 ATTITUDES = {"±0.5′": 0.5, "±1′ (paper)": 1.0, "±2′": 2.0}
 N_FALSE = {"0": 0, "3 (ours)": 3, "6": 6}
-for att in ATTITUDES.values():  # precompute every setting once
+for att in ATTITUDES.values():  # simulate every setting once (cached)
     for nf in N_FALSE.values():
         E.threshold_study(att, nf)
 
-
-def draw_tradeoff(threshold, attitude, n_false):
-    return E.plot_threshold_tradeoff(E.threshold_study(attitude, n_false), threshold)
-
-
-explore = panel(draw_tradeoff,
+explore = panel(E.TradeoffView(E.threshold_study),  # a change of L only re-counts and redraws
                 threshold=float_slider("L (px)", 0.5, 30.0, 0.5, 10.0),
-                attitude=dropdown("attitude error", ATTITUDES, 1.0),
+                attitude_arcmin=dropdown("attitude error", ATTITUDES, 1.0),
                 n_false=dropdown("false targets / map", N_FALSE, 3))
 
 # %% [markdown]

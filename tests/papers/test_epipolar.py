@@ -181,3 +181,28 @@ def test_schematics_draw():
     with pytest.raises(ValueError, match="not seen"):
         E.plot_triangulation(scen, draw.obs, pair=(1, 2), target=0)
     plt.close("all")
+
+
+def test_runs_bad_input():
+    scen = E.build_scenario()
+    with pytest.raises(ValueError, match="n_draws"):
+        E.run_scenario_draws(scen, n_draws=0)
+    with pytest.raises(ValueError, match="n_sims"):
+        E.run_fig6(0)
+    with pytest.raises(ValueError, match="l_max"):
+        E.threshold_study(l_max=0.0)
+
+
+def test_tradeoff_view_reuses_the_figure():
+    import matplotlib.pyplot as plt
+
+    view = E.TradeoffView(lambda **kw: E.threshold_study(n_draws=20, **kw))
+    f1 = view(threshold=10.0, attitude_arcmin=1.0, n_false=3)
+    f2 = view(threshold=4.5, attitude_arcmin=1.0, n_false=3)
+    assert f1 is f2 and f2.get_suptitle().startswith("L = 4.5 px")
+    marks = [ln for ax in f2.axes for ln in ax.lines if ln.get_color() == "k"]
+    assert len(marks) == 2 and all(list(ln.get_xdata()) == [4.5, 4.5] for ln in marks)
+    assert view(threshold=4.5, attitude_arcmin=2.0, n_false=3) is not f1
+    with pytest.raises(TypeError, match="study_fn"):
+        E.TradeoffView(3)
+    plt.close("all")

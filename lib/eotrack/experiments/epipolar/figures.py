@@ -17,6 +17,7 @@ from .scenario import PAIR_LABELS, PAIRS, Observation, Scenario, frame_chain
 from .trials import ThresholdStudy
 
 __all__ = [
+    "TradeoffView",
     "plot_distance_check",
     "plot_epipolar_geometry",
     "plot_fig3",
@@ -178,15 +179,17 @@ def plot_frame_chain(scenario: Scenario, k: int = 0, *, fig=None):
     """The chain of frames of eq. (4) for sensor ``k``: J2000 → orbit (LVLH) → body → sensor,
     each frame's axes drawn in J2000 (red x, green y, blue z)."""
     ch = frame_chain(scenario, k)
-    fig = fig if fig is not None else plt.figure(figsize=(12, 3.6))
+    fig = fig if fig is not None else plt.figure(figsize=(12, 3.2))
     y, p, r = np.degrees(ch.yaw_pitch_roll_rad)
     panels = [("J2000", np.eye(3), "reference (ECI)"),
               ("orbit (LVLH)", ch.orbit, "from r, v: z nadir, y −h"),
               ("body", ch.body, f"r(Y, P, R) of eq. (4)\nY {y:.1f}°, P {p:.1f}°, R {r:.1f}°"),
               ("sensor", ch.sensor, "mounting M (assumed)\nz = boresight")]
     rhat = ch.position_km / np.linalg.norm(ch.position_km)
+    gs = fig.add_gridspec(1, 7, width_ratios=(1, 0.22, 1, 0.22, 1, 0.22, 1), wspace=0.0)
+    steps = ("R_orbit", "r(Y,P,R)", "M")
     for i, (name, R, sub) in enumerate(panels):
-        ax = fig.add_subplot(1, 4, i + 1, projection="3d")
+        ax = fig.add_subplot(gs[0, 2 * i], projection="3d")
         for e in np.eye(3):
             ax.plot(*np.stack([np.zeros(3), e]).T, color="0.8", lw=1)
         for row, col, lab in zip(R, ("tab:red", "tab:green", "tab:blue"), "xyz"):
@@ -203,7 +206,11 @@ def plot_frame_chain(scenario: Scenario, k: int = 0, *, fig=None):
         ax.set_zticks([])
         ax.set_title(f"{name}\n{sub}", fontsize=9)
         if i < 3:
-            fig.text(0.25 * (i + 1) - 0.01, 0.5, "→", fontsize=20, ha="center", va="center")
+            axa = fig.add_subplot(gs[0, 2 * i + 1])
+            axa.axis("off")
+            axa.annotate("", xy=(0.95, 0.5), xytext=(0.05, 0.5),
+                         arrowprops={"arrowstyle": "->", "lw": 2})
+            axa.text(0.5, 0.58, steps[i], ha="center", va="bottom", fontsize=8)
     fig.suptitle(f"Frames of sensor {k + 1}: R_sensor = M · r(Y, P, R) · R_orbit "
                  "(grey: J2000 axes)", fontsize=10)
     return fig
@@ -220,7 +227,6 @@ def plot_threshold_tradeoff(study: ThresholdStudy, threshold: float, *, fig=None
     fig = fig if fig is not None else plt.figure(figsize=(10, 3.4), dpi=72)
     ax, ax2 = fig.subplots(1, 2)
     th, r = study.curves()
-    now = study.rates(float(threshold))
     g = study.gate_px
     ax.axvspan(8, 12, color="0.9", zorder=0, label="paper: 8–12 px")
     ax.plot(th, 100 * r["missed"], ":", label="missed")
@@ -241,14 +247,48 @@ def plot_threshold_tradeoff(study: ThresholdStudy, threshold: float, *, fig=None
         a.xaxis.set_major_locator(MaxNLocator(6))
         a.yaxis.set_major_locator(MaxNLocator(4))
         a.legend(fontsize=8, loc="upper right")
-    e = study.errors
-    fig.suptitle(f"L = {threshold:g} px (black): missed {100 * float(now['missed']):.1f} %, "
-                 f"false {100 * float(now['false']):.1f} %, total "
-                 f"{100 * float(now['total']):.1f} % — attitude ±{e.attitude_arcmin:g}′, "
-                 f"{e.n_false} false targets/map, {study.n_draws} draws (reduced from 300)",
-                 fontsize=9)
+    fig.suptitle(_tradeoff_title(study, threshold), fontsize=9)
     fig.subplots_adjust(left=0.06, right=0.98, bottom=0.15, top=0.88, wspace=0.15)
     return fig
+
+
+def _tradeoff_title(study: ThresholdStudy, threshold: float) -> str:
+    now = study.rates(float(threshold))
+    e = study.errors
+    return (f"L = {threshold:g} px (black): missed {100 * float(now['missed']):.1f} %, "
+            f"false {100 * float(now['false']):.1f} %, total "
+            f"{100 * float(now['total']):.1f} % — attitude ±{e.attitude_arcmin:g}′, "
+            f"{e.n_false} false targets/map, {study.n_draws} draws (reduced from 300)")
+
+
+class TradeoffView:
+    """The widget's drawer: one :func:`plot_threshold_tradeoff` figure per error setting,
+    built once; a threshold change only moves the two black lines and rewrites the title
+    (so a redraw is just the rendering).
+
+    Call it with the panel's values: ``TradeoffView(study_fn)(threshold=…, **setting)``, where
+    ``study_fn(**setting)`` returns a :class:`~.trials.ThresholdStudy` (cached by the caller,
+    e.g. :func:`~.trials.threshold_study`).
+    """
+
+    def __init__(self, study_fn) -> None:
+        if not callable(study_fn):
+            raise TypeError(f"study_fn must be callable, got {type(study_fn).__name__}")
+        self._study_fn = study_fn
+        self._figs: dict[int, tuple] = {}
+
+    def __call__(self, threshold: float, **setting):
+        study = self._study_fn(**setting)
+        key = id(study)
+        if key not in self._figs:
+            fig = plot_threshold_tradeoff(study, threshold)
+            marks = [ln for ax in fig.axes for ln in ax.lines if ln.get_color() == "k"]
+            self._figs[key] = (fig, marks, study)
+        fig, marks, study = self._figs[key]
+        for ln in marks:
+            ln.set_xdata([threshold, threshold])
+        fig.suptitle(_tradeoff_title(study, threshold), fontsize=9)
+        return fig
 
 
 # --------------------------------------------------------------------------- figures
