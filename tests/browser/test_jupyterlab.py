@@ -17,9 +17,10 @@ Notebooks run in one JupyterLab server, ``$EOTRACK_BROWSER_PARALLEL`` at a time 
 each in its own tab; the panels are timed afterwards, one notebook at a time, with every other
 kernel idle.
 
-``test_open_save_keeps_files`` opens a notebook written by ``.ci/execute_notebooks.py`` (with
-its ``.py`` twin and the repository's jupytext pairing) and saves it with Ctrl+S: neither file
-may change, and the notebook must not be marked modified on open.
+``test_open_save_keeps_files`` opens each stored notebook (and a small panel notebook executed
+by ``.ci/execute_notebooks.py``) with its ``.py`` twin and the repository's jupytext pairing,
+and saves it with Ctrl+S: neither file may change, and the notebook must not be marked
+modified on open.
 
 Needs Debian's ``chromium`` (``apt-get install chromium``) and the ``playwright`` Python package
 (driving that Chromium through ``executable_path``; ``playwright install`` is never used, it
@@ -33,6 +34,7 @@ import difflib
 import importlib.util
 import json
 import os
+import re
 import shutil
 import socket
 import subprocess
@@ -48,7 +50,7 @@ pytestmark = pytest.mark.browser
 
 ROOT = Path(__file__).resolve().parents[2]
 NOTEBOOKS = sorted((ROOT / "notebooks").glob("0[1-9]*.ipynb"))
-ROUNDTRIP = NOTEBOOKS[0] if NOTEBOOKS else None
+STORED = sorted((ROOT / "notebooks").glob("[0-9]*.ipynb"))  # the index too
 CHROMIUM_FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic",
                   "--no-first-run", "--disable-background-networking",
                   "--disable-component-update", "--disable-sync"]
@@ -397,28 +399,38 @@ explore = panel(draw, s=float_slider("s (m)", 0.0, 1.0, 0.005, 0.5), flip=toggle
 """
 
 
-@pytest.mark.parametrize("which", ["stored", "panel"])
-def test_open_save_keeps_files(which, browser, lab, monkeypatch):
-    """Ctrl+S on a notebook stored by .ci/execute_notebooks.py changes neither file of the pair.
+def _hygiene_fails() -> bool:
+    """The switch at the top of .ci/check_twins.py (False while notebooks are re-executed)."""
+    m = re.search(r"^HYGIENE_FAILS\s*=\s*(True|False)", (ROOT / ".ci" / "check_twins.py")
+                  .read_text(), re.MULTILINE)
+    return bool(m) and m.group(1) == "True"
 
-    ``stored``: the repository's first notebook, written as execute_notebooks.py writes it
-    (without re-running it); ``panel``: a small solutions notebook with a panel, executed by
-    execute_notebooks.py, so its saved widget state is part of the round trip.
+
+@pytest.mark.parametrize("which", ["panel", *(f"stored:{p.name}" for p in STORED)])
+def test_open_save_keeps_files(which, browser, lab, monkeypatch):
+    """Ctrl+S in JupyterLab changes neither file of a notebook's pair (so `git status` stays clean).
+
+    ``panel``: a small solutions notebook with a panel, executed by .ci/execute_notebooks.py
+    (so its saved widget state is part of the round trip). ``stored:X``: the repository's
+    notebook X exactly as committed, with its twin — expected to fail (xfail) until it has been
+    re-executed with .ci/execute_notebooks.py, while ``HYGIENE_FAILS`` in .ci/check_twins.py
+    is False.
     """
-    if which == "stored" and ROUNDTRIP is None:
-        pytest.skip("no notebook to open")
     ex = _ci_module("execute_notebooks")
-    repo = lab.work / f"roundtrip-{which}"
+    # (a directory and a JupyterLab workspace name: letters, digits, '-' and '_' only)
+    repo = lab.work / ("roundtrip-" + re.sub(r"[^A-Za-z0-9_-]", "-", which))
     repo.mkdir()
     shutil.copy(ROOT / "pyproject.toml", repo / "pyproject.toml")
-    if which == "stored":
-        ipynb = repo / "notebooks" / ROUNDTRIP.name
+    if which.startswith("stored:"):
+        src = ROOT / "notebooks" / which.split(":", 1)[1]
+        ipynb = repo / "notebooks" / src.name
         py = ex.pair_of(ipynb)
         py.parent.mkdir(parents=True)
-        shutil.copy(ROUNDTRIP, ipynb)
-        shutil.copy(ex.pair_of(ROUNDTRIP), py)
-        nb = ex.load_inputs(py)
-        ex.save_pair(ex.stable_widget_ids(ex.normalise(nb)), ipynb, repo)
+        shutil.copy(src, ipynb)
+        if not ex.pair_of(src).exists():
+            pytest.fail(f"{src.name} has no twin {ex.pair_of(src).relative_to(ROOT)}")
+        shutil.copy(ex.pair_of(src), py)
+        os.utime(py)  # as after a checkout: the twin is not older than the notebook
     else:
         ipynb = repo / "notebooks" / "solutions" / "99_panel_solutions.ipynb"
         py = ex.pair_of(ipynb)
@@ -430,7 +442,7 @@ def test_open_save_keeps_files(which, browser, lab, monkeypatch):
     before = {f: f.read_bytes() for f in (ipynb, py)}
     mtime = ipynb.stat().st_mtime_ns
     rel = ipynb.relative_to(lab.work).as_posix()
-    page = _open(browser, lab, rel, f"roundtrip-{which}")
+    page = _open(browser, lab, rel, repo.name)
     try:
         page.wait_for_timeout(2000)
         dirty_on_open = page.evaluate(JS_STATUS)["dirty"]
@@ -444,8 +456,9 @@ def test_open_save_keeps_files(which, browser, lab, monkeypatch):
         page.evaluate("() => window.jupyterapp.shell.currentWidget.sessionContext.shutdown()")
     finally:
         page.close()
-    assert saved, "Ctrl+S did not save the notebook"
-    assert not dirty_on_open, "JupyterLab marked the notebook modified on open"
+    problems = [] if saved else ["Ctrl+S did not save the notebook"]
+    if dirty_on_open:
+        problems.append("JupyterLab marked the notebook modified on open")
     diffs = []
     for f, old in before.items():
         new = f.read_bytes()
@@ -453,4 +466,8 @@ def test_open_save_keeps_files(which, browser, lab, monkeypatch):
             d = difflib.unified_diff(old.decode().splitlines(), new.decode().splitlines(),
                                      str(f.relative_to(repo)), "after Ctrl+S", lineterm="", n=1)
             diffs.append("\n".join(list(d)[:40]))
-    assert not diffs, "open + save changed the pair:\n" + "\n".join(diffs)
+    if diffs:
+        problems.append("open + save changed the pair:\n" + "\n".join(diffs))
+    if problems and which.startswith("stored:") and not _hygiene_fails():
+        pytest.xfail("not yet re-executed with .ci/execute_notebooks.py: " + problems[0][:300])
+    assert not problems, "\n".join(problems)
