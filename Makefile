@@ -6,10 +6,11 @@ NB_SAN  := tests/notebooks/sanitize.cfg
 
 .PHONY: setup repro repro-quick test lint unit papers notebooks browser lab bench execute clean book
 
-# The stamp holds a hash of what the install depends on (environment.txt and pyproject.toml less
-# its [tool.*] sections): a newer file with the same content (a checkout, a ruff setting) does
-# not reinstall; a changed pin or dependency does.
-ENV_HASH = cat environment.txt && awk '/^\[/{t=($$0 ~ /^\[tool\./)} !t' pyproject.toml
+# The stamp holds a hash of what the install depends on (environment.txt, and pyproject.toml less
+# its [tool.*] sections other than [tool.setuptools*]): a newer file with the same content (a
+# checkout, a ruff or pytest setting) does not reinstall; a changed pin or dependency does.
+ENV_HASH = cat environment.txt && \
+	awk '/^\[/{t=($$0 ~ /^\[tool\./ && $$0 !~ /^\[tool\.setuptools/)} !t' pyproject.toml
 $(STAMP): environment.txt pyproject.toml
 	@test -x $(PY) || python3 -m venv .venv
 	@h=$$( ( $(ENV_HASH) ) | sha256sum | cut -d' ' -f1); \
