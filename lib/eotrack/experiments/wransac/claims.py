@@ -15,7 +15,8 @@ from eotrack.robust import (
 )
 
 from .scenario import COORDS
-from .trials import PredictionResults, block_max, variance_ratio
+from .tables import block_max, variance_ratio
+from .trials import PredictionResults
 
 __all__ = ["evaluate"]
 

@@ -189,7 +189,7 @@ def plot_error_distribution(res: PredictionResults, coord: str = "dec", *,
 def plot_pull(res: PredictionResults, coord: str = "dec", at_min: float = 72.0, *,
               ax: plt.Axes | None = None) -> plt.Axes:
     """The mechanism: WRANSAC − RANSAC against best hypothesis − RANSAC, one dot per run."""
-    from .trials import pull_statistics
+    from .tables import pull_statistics
 
     ax = get_ax(ax, figsize=(5.5, 4.5))
     ci = COORDS.index(check_choice(coord, "coord", COORDS))
