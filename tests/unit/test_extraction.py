@@ -151,3 +151,15 @@ def test_sky_config_and_cap():
         SkyConfig(max_sources=0)
     with pytest.raises(ValueError, match="max_stars"):
         ExtractionConfig(max_stars=0)
+
+
+def test_paper_method_on_a_real_crowded_frame():
+    from eotrack.imaging import real_sky_images
+
+    m13 = real_sky_images()["m13"]
+    robust = extract_stars(m13, method="adaptive", return_info=True)
+    printed = extract_stars(m13, method="adaptive", return_info=True,
+                            config=ExtractionConfig(robust_roi=False))
+    # the printed eq. (21) lets the crowded core's light raise T_f: the ROI shrinks
+    assert robust.roi_fraction > 2 * printed.roi_fraction
+    assert len(robust) > 2 * len(printed)

@@ -94,6 +94,10 @@ class ExtractionConfig:
     full_scale
         The grey-level range ``R`` is divided by (None: 255 for 8-bit data, otherwise the data's
         ``max − min``).
+    robust_roi
+        Eq. (21)'s ``μ_f`` and ``σ_f`` as the median and a MAD-based σ of ``I_f`` (default) or,
+        as printed, the mean and standard deviation — which bright and crowded stars inflate,
+        so that the region of interest drops the fainter stars.
     min_area
         Smallest component kept (pixels).
     max_area
@@ -117,6 +121,7 @@ class ExtractionConfig:
     max_stars: int | None = None
     centroid_grow: int = 2
     full_scale: float | None = None
+    robust_roi: bool = True
 
     def __post_init__(self) -> None:
         check_positive(self.sigma_b, "sigma_b")
@@ -428,8 +433,13 @@ def extract_stars(image: Any, *, method: str = "sky",
         noise = _robust_std(f)
         ksize = (2 * cfg.r + 1, 2 * cfg.r + 1)
         if R < cfg.r_min:
-            mu_f, sd_f = cv2.meanStdDev(f)
-            high = f >= mu_f[0, 0] + cfg.k * sd_f[0, 0]
+            if cfg.robust_roi:
+                # median and MAD-σ of I_f: the stars' own light does not raise T_f
+                mu0, sd0 = float(np.median(f[::4, ::4])), noise
+            else:
+                mu_f, sd_f = cv2.meanStdDev(f)
+                mu0, sd0 = float(mu_f[0, 0]), float(sd_f[0, 0])
+            high = f >= mu0 + cfg.k * sd0
             roi = cv2.dilate(high.astype(np.uint8), np.ones(ksize, np.uint8)) > 0
             roi_frac = float(roi.mean())
         else:

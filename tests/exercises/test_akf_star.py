@@ -1,0 +1,89 @@
+"""Checkers of notebook 05's exercises: right answers pass, wrong ones fail, bad ones raise."""
+
+from __future__ import annotations
+
+from functools import lru_cache
+
+import numpy as np
+import pytest
+from eotrack.exercises import check, exercise_ids
+from eotrack.experiments import akf_star as A
+
+SLUG = "akf_star"
+
+
+def _qa():
+    # independent of the library: integrate d Var/dt = -2α Var + σ_w² numerically
+    alpha, sw, dt = 0.7, 4.0, 0.2
+    v, h = 0.0, dt / 20000
+    for _ in range(20000):
+        v += h * (-2 * alpha * v + sw * sw)
+    return v
+
+
+def _d(k, b):
+    return (1 - b) / (1 - b ** (k + 1))
+
+
+@lru_cache(maxsize=1)
+def _explore():
+    return float(A.ExploreSession().errors("cloud", seed=0, occlusion_frames=25)["BEAK-ST"]
+                 .mean())
+
+
+def _reduction():
+    base = np.mean([3.62, 3.48, 3.21, 3.75, 3.94])
+    ours = np.mean([1.63, 1.89, 1.58, 1.69, 1.81])
+    return 100 * (1 - ours / base)
+
+
+RIGHT = {
+    "akf_star.1": _qa,
+    "akf_star.2": lambda: _d,
+    "akf_star.3": lambda: float(A.diurnal_check()["rel_error_paper"].median()),
+    "akf_star.4": _explore,
+    "akf_star.5": _reduction,
+    "akf_star.6": lambda: "d",
+}
+
+WRONG = {
+    "akf_star.1": lambda: 4.0 ** 2 * 0.2,                  # white-noise variance σ_w² ΔT... no decay
+    "akf_star.2": lambda: (lambda k, b: (1 - b) / (1 - b ** k) if k else 1.0),  # printed form
+    "akf_star.3": lambda: 0.05,                            # "a few per cent"
+    "akf_star.4": lambda: _explore() * 1.5 + 1.0,
+    "akf_star.5": lambda: 40.0,                            # the abstract's number
+    "akf_star.6": lambda: "a",
+}
+
+BAD = {
+    "akf_star.1": ("0.5", TypeError),
+    "akf_star.2": (3.0, TypeError),
+    "akf_star.3": (float("nan"), ValueError),
+    "akf_star.4": ([1.0], TypeError),
+    "akf_star.5": (np.inf, ValueError),
+    "akf_star.6": ("e", ValueError),
+}
+
+
+def test_at_least_four():
+    assert len(exercise_ids(SLUG)) >= 4
+    assert sorted(RIGHT) == exercise_ids(SLUG)
+
+
+@pytest.mark.parametrize("ex", sorted(RIGHT))
+def test_right_answer_passes(ex):
+    assert check(ex, RIGHT[ex]())
+
+
+@pytest.mark.parametrize("ex", sorted(WRONG))
+def test_wrong_answer_fails(ex):
+    res = check(ex, WRONG[ex]())
+    assert not res
+    assert "hint" in res.message
+
+
+@pytest.mark.parametrize("ex", sorted(BAD))
+def test_bad_answer_raises(ex):
+    value, exc = BAD[ex]
+    with pytest.raises(exc):
+        check(ex, value)
