@@ -175,14 +175,19 @@ def plot_rho_theta_votes(scene: Scene, cfg: XuConfig | None = None, *, target: i
             ax.axvline(x, color="0.8", lw=0.8)
         for y in np.arange(r0, r1 + 1e-9, cfg.cell_rho_px):
             ax.axhline(y, color="0.8", lw=0.8)
-        cells = {(math.floor(a / cfg.cell_theta_deg), math.floor(b / cfg.cell_rho_px))
-                 for a, b in zip(td, r)}
+        it = np.floor(td / cfg.cell_theta_deg)
+        ir = np.floor(r / cfg.cell_rho_px)
+        differ = [lab_ for lab_, v_ in (("θ", it), ("ρ", ir)) if len(np.unique(v_)) > 1]
+        verdict = ("one cell" if not differ else
+                   f"cells differ in {' and '.join(differ)}"
+                   + (" (not 6-neighbours)" if len(differ) > 1 else " (6-neighbours)"))
         ax.set_xlim(t0, t1)
         ax.set_ylim(r0, r1)
+        ax.xaxis.set_major_locator(plt.MaxNLocator(5))
         ax.set_xlabel("θ (°)")
         ax.set_ylabel(f"ρ from the {name} (px)")
-        ax.set_title(f"object {target + 1}: {int(sel.sum())} pairs in {len(cells)} (ρ, θ) "
-                     f"cells — origin at the {name}", fontsize=9)
+        ax.set_title(f"object {target + 1}, {int(sel.sum())} pairs, ρ from the {name}:\n"
+                     f"{verdict}", fontsize=9)
     fig.tight_layout()
     return fig
 
@@ -358,12 +363,13 @@ def plot_explore(clutter: float = 20.0, neighbourhood: int = 6, centred: bool = 
     ax2.set_ylabel("false tracks per scene")
     h1, l1 = ax.get_legend_handles_labels()
     h2, l2 = ax2.get_legend_handles_labels()
-    ax.legend(h1 + h2, l1 + l2, fontsize=7, loc="upper left")
+    ax2.legend(h1 + h2, l1 + l2, fontsize=6.5, loc="lower left", framealpha=0.95)
     name = ("ours (verified)" if verified else
             f"paper, {neighbourhood}-nbhd, ρ from the {'centre' if centred else 'corner'}")
-    ax.set_title(f"{name}: recall {res['correct'].sum() / max(res['eligible'].sum(), 1):.2f}, "
-                 f"{res['false'].mean():.1f} false/scene (chance {res['chance'].mean():.1f}) — "
-                 f"{len(x)} scenes only", fontsize=8.5)
+    ax.set_title(f"{name} — {len(x)} scenes only\nrecall "
+                 f"{res['correct'].sum() / max(res['eligible'].sum(), 1):.2f}, "
+                 f"{res['false'].mean():.1f} false/scene (chance {res['chance'].mean():.1f})",
+                 fontsize=8.5)
     ax = axes[1]
     ax.plot(*res["detections"].T, ".", color="0.7", ms=3)
     for i in range(res["truth"].shape[1]):
@@ -378,5 +384,5 @@ def plot_explore(clutter: float = 20.0, neighbourhood: int = 6, centred: bool = 
     ax.set_ylabel("y (px)")
     ax.set_title(f"scene 0: {int(res['correct'][0])}/{int(res['eligible'][0])} objects, "
                  f"{int(res['false'][0])} false (green: correct, red: false)", fontsize=9)
-    fig.tight_layout()
+    fig.subplots_adjust(left=0.07, right=0.97, bottom=0.12, top=0.86, wspace=0.45)
     return fig
