@@ -620,10 +620,11 @@ display(Markdown("**Recommendation.** " + W.recommendation(worst)))
 
 # %% [markdown]
 # **For a practitioner**, read together with the ratio table and the U sweep: spend the
-# hypothesis budget (tens to hundreds of draws cost microseconds), refit by least squares on the
-# inliers, and reach for a down-weighting refit (or an M-estimator started from RANSAC) only
-# where the inlier noise is heavy-tailed; check the trajectory model first when the object
-# drifts.
+# hypothesis budget (tens to hundreds of draws cost microseconds); refit by least squares on the
+# inliers and, cheaply, polish with an M-estimator started from the RANSAC fit; use a
+# down-weighting refit of the WRANSAC kind only where the inlier noise is heavy-tailed, and never
+# with weights taken from the 4-point hypothesis; check the trajectory model first when the
+# object drifts.
 
 # %% [markdown]
 # ## 10 · Key points
@@ -638,6 +639,8 @@ display(Markdown("**Recommendation.** " + W.recommendation(worst)))
 #   extrapolation then amplifies the pull.
 # * Down-weighting pays off only when the inlier noise has heavy tails — then the refit or
 #   iterated readings reproduce the paper's ordering.
+# * An M-estimator (Huber, Cauchy) started from the RANSAC fit is a cheap polish — compare it
+#   with RANSAC in the U sweep and the generalisation table.
 # * The printed loss (6) is an erratum; the corrected $L_s$ has the properties the text claims.
 # * For a drifting object, the trajectory model, not the robust estimator, limits prediction.
 
