@@ -72,15 +72,16 @@ def bench_accumulator(n_points: int = 800, seed: int = 0, repeat: int = 60) -> N
             pts32, 5, 3, -rmax, rmax, 1.0, 0.0, math.pi, math.radians(1.0)),
         "skimage.hough_line": lambda: hough_line(img, theta=theta),
     }
-    # interleave the three so load on the machine hits them alike
+    # each method in its own block of repeats (steady state, as the baseline was
+    # measured), the blocks alternated over three rounds so load hits them alike
     cpu = {k: [] for k in fns}
-    for f in fns.values():
-        f()
-    for _ in range(repeat):
+    for _ in range(3):
         for k, f in fns.items():
-            c0 = time.process_time()
             f()
-            cpu[k].append(time.process_time() - c0)
+            for _ in range(repeat // 3):
+                c0 = time.process_time()
+                f()
+                cpu[k].append(time.process_time() - c0)
     t = {k: float(np.min(v)) for k, v in cpu.items()}
     r, th, votes = fns["ours (numpy bincount)"]().peak()
     cv_best = fns["cv2.HoughLinesPointSet"]().reshape(-1, 3)[0]

@@ -786,15 +786,14 @@ class _VerifiedEngine:
         if len(win) == 0:
             return
         rows, pm, v, chi, nh = rows[win], pm[win], v[win], chi[win], nh[win]
-        self.avail_flat[rows[rows >= 0]] = False
+        ok = rows >= 0
+        self.avail_flat[rows[ok]] = False
         infos = _track_infos(pm, v, cfg.origin_px)
-        for i in range(len(rows)):
-            gi = rows[i][rows[i] >= 0]
-            f = self.frame_of[gi]
-            hits = list(zip(f.tolist(), (gi - self.off[f]).tolist()))
-            info = infos[i]
-            info.update(method="modified_hough", chi2=float(chi[i]), n_hits=int(nh[i]))
-            self.handoff.confirm(hits, k, self.fw, info=info)
+        for info, c, n in zip(infos, chi.tolist(), nh.tolist()):
+            info.update(method="modified_hough", chi2=c, n_hits=int(n))
+        g = np.maximum(rows, 0)
+        f = self.frame_of[g]
+        self.handoff.confirm_batch(f, np.where(ok, g - self.off[f], -1), k, self.fw, info=infos)
 
     def _extend(self, rows: np.ndarray, slot_t: np.ndarray, lo: int, first: int) -> np.ndarray:
         """Add, per row, the nearest available detection of each empty window slot inside the
