@@ -36,7 +36,7 @@ class HoughAccumulator:
     Attributes
     ----------
     votes
-        ``(n_rho, n_theta)`` integer counts.
+        ``(n_rho, n_theta)`` integer counts (``int32``; a transposed view of a θ-major array).
     rho_edges
         ``n_rho + 1`` bin edges (pixels).
     theta
@@ -94,19 +94,26 @@ def hough_accumulator(xy: np.ndarray, d_rho: float = 1.0, d_theta_deg: float = 1
     theta = np.minimum(theta, math.pi - 1e-12)
     n_rho = math.ceil(2 * rmax / dr) + 1
     edges = -rmax + dr * np.arange(n_rho + 1)
-    # ρ + rmax ≥ 0, so truncation is the floor; fold the shift and the scale into one product.
-    # (Broadcast multiply-adds, not a matrix product: a BLAS call on these thin matrices costs
-    # more in thread start-up than the arithmetic.)
-    c, s = np.cos(theta) / dr, np.sin(theta) / dr
-    rho = p[:, 0:1] * c
-    rho += p[:, 1:2] * s
-    rho += rmax / dr
-    bins = rho.astype(np.int32)
-    np.minimum(bins, n_rho - 1, out=bins)
-    flat = bins.astype(np.intp)
-    flat *= n_theta
-    flat += np.arange(n_theta, dtype=np.intp)
-    votes = np.bincount(flat.ravel(), minlength=n_rho * n_theta).reshape(n_rho, n_theta)
+    # ρ + rmax ≥ 0, so truncation is the floor. Worked in blocks of θ columns, so that every
+    # temporary is small (a few 100 kB): large fresh arrays cost more in page faults than the
+    # arithmetic. One small matrix product per block.
+    cs = np.stack([np.cos(theta), np.sin(theta)]) / dr
+    off = rmax / dr
+    n_pts = len(p)
+    bins = np.empty((n_pts, n_theta), dtype=np.int32)
+    votes_t = np.empty((n_theta, n_rho), dtype=np.int32)
+    step = max(1, min(n_theta, 36_000 // max(n_pts, 1)))
+    for j0 in range(0, n_theta, step):
+        j1 = min(j0 + step, n_theta)
+        rho = p @ cs[:, j0:j1]
+        rho += off
+        b = rho.astype(np.int32)
+        np.minimum(b, n_rho - 1, out=b)
+        bins[:, j0:j1] = b
+        b += np.arange(j1 - j0, dtype=np.int32) * n_rho
+        votes_t[j0:j1] = np.bincount(b.ravel(), minlength=(j1 - j0) * n_rho).reshape(
+            j1 - j0, n_rho)
+    votes = votes_t.T
     return HoughAccumulator(votes=votes, rho_edges=edges, theta=theta, bins=bins)
 
 
