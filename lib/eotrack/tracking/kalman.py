@@ -364,23 +364,25 @@ def kalman_filter(zs: Any, F: Any, H: Any, Q: Any, R: Any, x0: Any, P0: Any
     return out[:, :, d].copy(), 0.5 * (Ps + np.swapaxes(Ps, 1, 2))
 
 
-def _left_product(F: np.ndarray, P: np.ndarray) -> np.ndarray:
+def _left_product(F: np.ndarray, P: np.ndarray, nz: list[np.ndarray] | None = None
+                  ) -> np.ndarray:
     """``F @ P`` contracted over the first axis of ``P`` (``(d, ...)``), as a sum of scaled
     slabs over the non-zeros of ``F`` (a transition matrix is sparse). Element-wise passes over
-    contiguous slabs; no BLAS call, so no thread start-up per step on small matrices."""
+    contiguous slabs; no BLAS call, so no thread start-up per step on small matrices.
+    ``nz[i]`` may hold the column indices of row ``i``'s non-zeros (precomputed)."""
     out = np.empty((F.shape[0], *P.shape[1:]), dtype=np.result_type(F, P))
     for i in range(F.shape[0]):
-        nz = np.flatnonzero(F[i])
-        if nz.size == 0:
+        cols = np.flatnonzero(F[i]) if nz is None else nz[i]
+        if cols.size == 0:
             out[i] = 0.0
             continue
         acc = out[i]
-        f0 = F[i, nz[0]]
+        f0 = F[i, cols[0]]
         if f0 == 1.0:
-            acc[...] = P[nz[0]]
+            acc[...] = P[cols[0]]
         else:
-            np.multiply(P[nz[0]], f0, out=acc)
-        for k in nz[1:]:
+            np.multiply(P[cols[0]], f0, out=acc)
+        for k in cols[1:]:
             f = F[i, k]
             if f == 1.0:
                 acc += P[k]
@@ -476,10 +478,10 @@ def kalman_filter_batch(zs: Any, F: Any, H: Any, Q: Any, R: Any, x0: Any, P0: An
     # structure-of-arrays layout: the batch is the last (contiguous) axis, so every step is a
     # few element-wise passes over length-B vectors
     x = np.array(np.broadcast_to(x0a, (B, d)).T)              # (d, B)
-    xs_t = np.empty((n, d, B))
+    xs = np.empty((B, n, d))
     Ps = np.empty((B, n, d, d)) if return_covariances else None
     have = np.all(np.isfinite(z), axis=2)
-    z0 = np.where(np.isfinite(z), z, 0.0).transpose(1, 2, 0).copy()   # (n, m, B)
+    zt = z.transpose(1, 2, 0)                  # (n, m, B) view; NaN rows zeroed per step
     FT = np.ascontiguousarray(F_.T)
     HT = np.ascontiguousarray(H_.T)
     selector = m == 2 and np.array_equal(H_, np.hstack([np.eye(2), np.zeros((2, d - 2))]))
@@ -493,8 +495,15 @@ def kalman_filter_batch(zs: Any, F: Any, H: Any, Q: Any, R: Any, x0: Any, P0: An
         o = d // m
         idx = [a + m * np.arange(o) for a in range(m)]
         Qab = Qa[:, :, None]
+    nzF = [np.flatnonzero(r) for r in F_]
+    nzH = [np.flatnonzero(r) for r in H_]
+    if blocks is not None:
+        nzA = [np.flatnonzero(r) for r in Fa]
+    block = 16                                 # states are written to xs in blocks of steps
+    buf = np.empty((block, d, B))
     for k in range(n):
         h = have[:, k]
+        zk = np.where(h, zt[k], 0.0)                                  # (m, B)
         if shared and not (h.all() or not h.any()):
             shared = False
             if blocks is not None:
@@ -502,18 +511,18 @@ def kalman_filter_batch(zs: Any, F: Any, H: Any, Q: Any, R: Any, x0: Any, P0: An
                 P = np.array(np.broadcast_to(P[np.ix_(idx[0], idx[0])][:, :, None], (o, o, B)))
             else:
                 P = np.array(np.broadcast_to(P[:, :, None], (d, d, B)))      # (d, d, B)
-        x = _left_product(F_, x)
+        x = _left_product(F_, x, nzF)
         if axis_mode:
             # one o × o covariance per sequence serves every axis; scalar gain per axis
-            A = _left_product(Fa, P)
-            P = _left_product(Fa, A.transpose(1, 0, 2))
+            A = _left_product(Fa, P, nzA)
+            P = _left_product(Fa, A.transpose(1, 0, 2), nzA)
             P += Qab
             c0 = P[:, 0].copy()                                   # (o, B)
             g = np.where(h, 1.0 / (c0[0] + r_a), 0.0)
             K = c0 * g
             P -= K[:, None, :] * c0[None, :, :]
             for a in range(m):
-                x[idx[a]] += K * (z0[k, a] - x[a])
+                x[idx[a]] += K * (zk[a] - x[a])
             if k % 8 == 0 or k == n - 1:
                 P = 0.5 * (P + P.transpose(1, 0, 2))
         elif shared:
@@ -523,12 +532,12 @@ def kalman_filter_batch(zs: Any, F: Any, H: Any, Q: Any, R: Any, x0: Any, P0: An
                 K = PHT @ _inv_stack(H_ @ PHT + R_)
                 P = P - K @ PHT.T
                 P = 0.5 * (P + P.T)
-                x += _left_product(K, z0[k] - _left_product(H_, x))
+                x += _left_product(K, zk - _left_product(H_, x, nzH))
         else:
             # F P Fᵀ for the whole batch: F (F P)ᵀ (P symmetric), each product a sum of
             # scaled (d, B) slabs over the non-zeros of F
-            A = _left_product(F_, P)
-            P = _left_product(F_, A.transpose(1, 0, 2))
+            A = _left_product(F_, P, nzF)
+            P = _left_product(F_, A.transpose(1, 0, 2), nzF)
             P += Qb
             if selector:
                 c0 = P[:, 0].copy()                           # P Hᵀ, column 0   (d, B)
@@ -542,8 +551,8 @@ def kalman_filter_batch(zs: Any, F: Any, H: Any, Q: Any, R: Any, x0: Any, P0: An
                 K1 = c1 * (a_ * idet) - c0 * (b_ * idet)
                 P -= K0[:, None, :] * c0[None, :, :]
                 P -= K1[:, None, :] * c1[None, :, :]
-                i0 = z0[k, 0] - x[0]
-                i1 = z0[k, 1] - x[1]
+                i0 = zk[0] - x[0]
+                i1 = zk[1] - x[1]
                 x += K0 * i0 + K1 * i1
             else:
                 Pb = P.transpose(2, 0, 1)
@@ -552,14 +561,16 @@ def kalman_filter_batch(zs: Any, F: Any, H: Any, Q: Any, R: Any, x0: Any, P0: An
                 K *= h[:, None, None]
                 Pb = Pb - K @ np.swapaxes(PHT, 1, 2)
                 P = np.ascontiguousarray(Pb.transpose(1, 2, 0))
-                x += np.einsum("bdm,bm->db", K, z0[k].T - (H_ @ x).T)
+                x += np.einsum("bdm,bm->db", K, zk.T - (H_ @ x).T)
             if k % 8 == 0 or k == n - 1:
                 P = 0.5 * (P + P.transpose(1, 0, 2))
-        xs_t[k] = x
+        buf[k % block] = x
+        if k % block == block - 1 or k == n - 1:
+            k0 = k - k % block
+            xs[:, k0:k + 1] = buf[: k + 1 - k0].transpose(2, 0, 1)
         if Ps is not None:
             Ps[:, k] = P if shared else (_full_from_axis(P, m) if axis_mode
                                          else P.transpose(2, 0, 1))
-    xs = np.ascontiguousarray(xs_t.transpose(2, 0, 1))
     if shared:
         Pfinal = np.broadcast_to(P, (B, d, d)).copy()
     elif axis_mode:
