@@ -171,3 +171,14 @@ def test_fast_kernel_matches_opencv_to_1e6_px(seed, n1, n2):
     assert np.abs(got - ref).max() < 1e-6
     # lists and float32 input take the validated path and give the same numbers
     np.testing.assert_allclose(epipolar_distances(F.tolist(), p1.tolist(), p2), got)
+
+
+def test_huge_F_scale_still_works():
+    # the fast path's finiteness check can overflow for absurd scales; it then re-validates
+    rng = np.random.default_rng(5)
+    F = rng.normal(size=(3, 3))
+    p1 = rng.uniform(0, 512, (4, 2))
+    p2 = rng.uniform(0, 512, (3, 2))
+    with np.errstate(over="ignore"):
+        np.testing.assert_allclose(epipolar_distances(1e160 * F, p1, p2),
+                                   epipolar_distances(F, p1, p2))
