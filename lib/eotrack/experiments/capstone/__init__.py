@@ -1,0 +1,47 @@
+"""Capstone — one night of GEO surveillance through every method of the collection.
+
+Not a paper reproduction: it composes the library's parts (notebooks 01–05) into one chain and
+measures the error each stage passes on. :mod:`.scenario` (the sky, stations, cameras and the
+SGP4 truth), :mod:`.pipeline` (frames → extraction → separation → initiation → association →
+triangulation → prediction, and the error budget), :mod:`.figures` (plots). There is no
+``reproduce``: the capstone has no paper claims, so ``python -m eotrack.repro`` skips it.
+"""
+
+from __future__ import annotations
+
+from .pipeline import (
+    PREDICTORS,
+    BurstResult,
+    NightResult,
+    associate_tracklets,
+    burst_index,
+    error_budget,
+    observe_burst,
+    predict_through_eclipse,
+    render_frame,
+    run_night,
+    separate_targets,
+    triangulate_pairs,
+)
+from .scenario import (
+    ARCSEC_PER_RAD,
+    EARTH_RATE_RAD_S,
+    Burst,
+    CapstoneConfig,
+    NightPlan,
+    StationSpec,
+    camera_matrix,
+    make_plan,
+    with_changes,
+)
+
+SLUG = "capstone"
+TITLE = "Capstone — one night of GEO surveillance through every method of the collection"
+
+__all__ = [
+    "ARCSEC_PER_RAD", "EARTH_RATE_RAD_S", "PREDICTORS", "SLUG", "TITLE", "Burst", "BurstResult",
+    "CapstoneConfig", "NightPlan", "NightResult", "StationSpec", "associate_tracklets",
+    "burst_index", "camera_matrix", "error_budget", "make_plan", "observe_burst",
+    "predict_through_eclipse", "render_frame", "run_night", "separate_targets",
+    "triangulate_pairs", "with_changes",
+]
