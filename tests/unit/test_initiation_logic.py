@@ -199,9 +199,10 @@ def test_handoff_claims_nearest_and_validates():
     assert h.tracks()[0].hits == [(0, 0), (1, 0), (2, 0)]
 
 
-@given(st.integers(0, 2**32 - 1), st.sampled_from([3, 4, 5]), st.booleans())
-@settings(max_examples=25, deadline=None)
-def test_triplet_fast_path_equals_row_engine(seed, m, angle):
+@given(st.integers(0, 2**32 - 1), st.sampled_from([3, 4, 5]), st.booleans(),
+       st.sampled_from([15.0, 60.0]))
+@settings(max_examples=30, deadline=None)
+def test_triplet_fast_path_equals_row_engine(seed, m, angle, gate):
     """The n = 3 fast path (no stored tentative tracks) gives the row engine's tracks."""
     from eotrack.tracking.initiation import logic as L
     from eotrack.tracking.initiation.gating import canonical_order
@@ -211,7 +212,7 @@ def test_triplet_fast_path_equals_row_engine(seed, m, angle):
     frames = [(float(tk), rng.uniform(0, 300, (rng.integers(0, 40), 2))) for tk in t]
     obj = rng.uniform(50, 250, 2), rng.uniform(-30, 30, 2)
     frames = [(tk, np.concatenate([xy, [obj[0] + obj[1] * (tk - t[0])]])) for tk, xy in frames]
-    cfg = L.LogicInitiator(n=3, m=m, gate_px=15.0, min_angle_deg=90.0 if angle else None)
+    cfg = L.LogicInitiator(n=3, m=m, gate_px=gate, min_angle_deg=90.0 if angle else None)
     perms = [canonical_order(xy) for _, xy in frames]
     xys = [xy[p] for (_, xy), p in zip(frames, perms)]
     fast = L._TripletLogicRun(cfg, xys, t).run(perms)

@@ -328,6 +328,14 @@ class _TripletLogicRun(_LogicRun):
         t1, t2, tk = self.times[f1], self.times[f2], self.times[k]
         tau = (tk - t2) / (t2 - t1)
         r = cfg.gate_px
+        span = np.ptp(pk, axis=0) + 2 * r
+        if len(pk) * np.pi * r**2 >= 0.3 * span[0] * span[1]:
+            # the gates cover most of the frame: the occupancy look-up would reject little
+            sa, sb = (g.ravel() for g in np.meshgrid(np.arange(len(a)), np.arange(len(b)),
+                                                       indexing="ij"))
+            sa, sb = sa[~self.resolved[(f1, f2)][a_id[sa], b_id[sb]]], \
+                sb[~self.resolved[(f1, f2)][a_id[sa], b_id[sb]]]
+            return self._finish_pairs(f1, f2, k, ids_k, a_id, b_id, a, b, pk, sa, sb, tau)
         occ, x0, y0, w, h = self._occ(k, pk, r)
         f32 = np.float32
         qx = ((1 + tau) * b[:, 0] - x0).astype(f32)[None, :] + (-tau * a[:, 0]).astype(f32)[:, None]
@@ -340,6 +348,13 @@ class _TripletLogicRun(_LogicRun):
         near = occ[key]
         near &= ~self.resolved[(f1, f2)][np.ix_(a_id, b_id)]
         sa, sb = np.nonzero(near)
+        return self._finish_pairs(f1, f2, k, ids_k, a_id, b_id, a, b, pk, sa, sb, tau)
+
+    def _finish_pairs(self, f1, f2, k, ids_k, a_id, b_id, a, b, pk, sa, sb, tau):
+        """Gate the candidate pairs ``(sa, sb)`` and take each one's nearest third point."""
+        cfg = self.cfg
+        r = cfg.gate_px
+        t1, t2, tk = self.times[f1], self.times[f2], self.times[k]
         if len(sa) == 0:
             return None
         d = b[sb] - a[sa]

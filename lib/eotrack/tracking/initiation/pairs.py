@@ -201,7 +201,8 @@ def occupancy_image(xy: np.ndarray, radius: float) -> tuple[np.ndarray, int, int
     Pixel ``(ix, iy)`` covers ``[x0 + ix, x0 + ix + 1) × [y0 + iy, y0 + iy + 1)``; it is marked
     when some pixel within ``radius + √2`` (pixel distance) holds a point, so every position
     within ``radius`` of a point falls on a marked pixel (a superset: marked pixels are then
-    checked exactly). A border of empty pixels surrounds the points, so look-ups clipped to the
+    checked exactly; for radii above 8 px the disc is widened to a square, which OpenCV dilates
+    in time independent of its size). A border of empty pixels surrounds the points, so look-ups clipped to the
     image land on empty pixels. Built as one dilation (``cv2.dilate``) of the points' pixels.
 
     Parameters
@@ -231,8 +232,12 @@ def occupancy_image(xy: np.ndarray, radius: float) -> tuple[np.ndarray, int, int
     h = math.floor(float(p[:, 1].max())) - y0 + n + 2
     img = np.zeros((h, w), dtype=np.uint8)
     img[np.floor(p[:, 1] - y0).astype(np.int64), np.floor(p[:, 0] - x0).astype(np.int64)] = 1
-    o = np.arange(-n, n + 1)
-    kernel = ((o[:, None] ** 2 + o[None, :] ** 2) <= (r + math.sqrt(2.0)) ** 2).astype(np.uint8)
+    if n <= 8:
+        o = np.arange(-n, n + 1)
+        kernel = ((o[:, None] ** 2 + o[None, :] ** 2) <= (r + math.sqrt(2.0)) ** 2)
+        kernel = kernel.astype(np.uint8)
+    else:  # a square (a superset of the disc): OpenCV dilates with it in O(pixels)
+        kernel = cv2.getStructuringElement(cv2.MORPH_RECT, (2 * n + 1, 2 * n + 1))
     return cv2.dilate(img, kernel).ravel(), x0, y0, w, h
 
 
