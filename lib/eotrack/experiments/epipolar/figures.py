@@ -263,8 +263,9 @@ def _tradeoff_title(study: ThresholdStudy, threshold: float) -> str:
 
 class TradeoffView:
     """The widget's drawer: one :func:`plot_threshold_tradeoff` figure per error setting,
-    built once; a threshold change only moves the two black lines and rewrites the title
-    (so a redraw is just the rendering).
+    built once (call it once per setting beforehand to pre-build them all); a threshold
+    change only moves the two black lines and rewrites the title (so a redraw is just the
+    rendering).
 
     Call it with the panel's values: ``TradeoffView(study_fn)(threshold=…, **setting)``, where
     ``study_fn(**setting)`` returns a :class:`~.trials.ThresholdStudy` (cached by the caller,
@@ -282,6 +283,7 @@ class TradeoffView:
         key = id(study)
         if key not in self._figs:
             fig = plot_threshold_tradeoff(study, threshold)
+            plt.close(fig)  # kept by the view, not by pyplot (no stray display)
             marks = [ln for ax in fig.axes for ln in ax.lines if ln.get_color() == "k"]
             self._figs[key] = (fig, marks, study)
         fig, marks, study = self._figs[key]
