@@ -52,6 +52,8 @@ nb_ipywidgets_js = {"widgets/embed.js": {}}  # vendored; the default loads from 
 nb_render_markdown_format = "myst"  # Markdown outputs (computed tables, links) as MyST
 myst_enable_extensions = ["dollarmath", "amsmath", "colon_fence"]
 myst_heading_anchors = 3
+# Jupyter renders $$...$$ inside a paragraph as display math; so must the book
+myst_dmath_double_inline = True
 # equation numbers are the paper's, written as \tag{} in the notebooks: no automatic numbering
 mathjax3_config = {"tex": {"tags": "none"}}
 

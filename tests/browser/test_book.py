@@ -31,8 +31,9 @@ SCREENSHOT = ROOT / "build" / "book-index.png"
 CHROMIUM_FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic",
                   "--no-first-run", "--disable-background-networking",
                   "--disable-component-update", "--disable-sync"]
-# anything that would make a reader's browser fetch from the internet
-REMOTE = re.compile(r"""(?:src|href)\s*=\s*["'](?:https?:)?//(?!doi\.org)""", re.I)
+# anything that would make a reader's browser fetch from the internet (links to click are fine)
+REMOTE = re.compile(r"""<(?:script|img|iframe|source|audio|video|embed)\b[^>]*\ssrc\s*=\s*["']"""
+                    r"""(?:https?:)?//|<link\b[^>]*\shref\s*=\s*["'](?:https?:)?//""", re.I)
 
 
 def _pages() -> list[Path]:
