@@ -154,9 +154,12 @@ def roundtrip_changes(ipynb: Path, root: Path = ROOT) -> list[str]:
         pair = pair_of(ipynb)
         shutil.copy2(ipynb, copy)
         if pair.exists():
-            shutil.copy2(pair, pair_of(copy))
+            shutil.copy(pair, pair_of(copy))  # newer than the notebook, as after a checkout
         cm = contents_manager(Path(tmp))
-        model = cm.get(rel.as_posix(), content=True)
+        try:
+            model = cm.get(rel.as_posix(), content=True)
+        except Exception as exc:  # jupytext refuses to open the pair
+            return [f"{rel.as_posix()} (JupyterLab could not open it: {exc})"]
         # the browser holds the notebook as JavaScript values in between
         model["content"] = nbformat.from_dict(_js_numbers(json.loads(json.dumps(model["content"]))))
         cm.save(model, rel.as_posix())
