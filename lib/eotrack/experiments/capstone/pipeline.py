@@ -9,7 +9,7 @@ Dask cluster, with bit-identical results (trial ``i`` always gets the same gener
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from functools import lru_cache
 
 import numpy as np
@@ -34,20 +34,33 @@ from eotrack.imaging import (
 from eotrack.montecarlo import TrialRunner
 from eotrack.tracking.initiation import ModifiedHoughInitiator
 
-from .scenario import ARCSEC_PER_RAD, CapstoneConfig, NightPlan, camera_matrix, make_plan
+from .scenario import (
+    ARCSEC_PER_RAD,
+    EARTH_RATE_RAD_S,
+    CapstoneConfig,
+    NightPlan,
+    camera_matrix,
+    make_plan,
+)
 
 __all__ = [
     "PREDICTORS",
+    "SKY_LEVELS",
     "BurstResult",
     "NightResult",
     "associate_tracklets",
     "burst_index",
+    "eclipse_check",
     "error_budget",
+    "noise_sweep",
     "observe_burst",
     "predict_through_eclipse",
+    "range_error_km",
     "render_frame",
     "run_night",
     "separate_targets",
+    "sidereal_drift_px",
+    "target_peak_snr",
     "triangulate_pairs",
 ]
 
@@ -503,40 +516,162 @@ def error_budget(plan: NightPlan, bursts: list[BurstResult], pairs: pd.DataFrame
     return pd.DataFrame(rows, columns=["stage", "metric", "value", "unit"])
 
 
-def run_night(config: CapstoneConfig | None = None, *, runner: TrialRunner | None = None
-              ) -> NightResult:
+def eclipse_check(plan: NightPlan, *, min_lead_s: float = 7200.0) -> list[tuple[int, int]]:
+    """(station, object) pairs whose umbra entry a station watches with ``min_lead_s`` of dark
+    observing before it.
+
+    Raises
+    ------
+    ValueError
+        Stage ``prediction``: a night with no eclipse to predict through.
+    """
+    cfg = plan.config
+    out = []
+    for o in range(len(cfg.norad_ids)):
+        umb = plan.grid_shadow[o] == 2
+        if not umb.any():
+            continue
+        t_in = plan.grid_s[np.argmax(umb)]
+        for s in range(len(cfg.stations)):
+            ok = plan.dark[s] & (plan.elevation_deg[s, o] > cfg.min_elevation_deg)
+            watched = plan.visit_s[ok]
+            if np.any((watched < t_in) & (watched >= t_in - min_lead_s)) and \
+                    np.any(watched >= t_in):
+                out.append((s, o))
+    if not out:
+        raise ValueError(f"stage 'prediction': a night with no eclipse — no object enters the "
+                         f"Earth's umbra while a station watches it (from {plan.t0.iso}, "
+                         f"{cfg.night_hours} h); GEO eclipses happen within about 6 weeks of "
+                         "an equinox, around the satellite's local midnight")
+    return out
+
+
+def run_night(config: CapstoneConfig | None = None, *, runner: TrialRunner | None = None,
+              strict: bool = True) -> NightResult:
     """Run the whole chain for one night.
+
+    Parameters
+    ----------
+    config
+        The night (default :class:`CapstoneConfig`).
+    runner
+        Where the bursts run (default serial); any backend gives the same numbers.
+    strict
+        Raise when a stage produces nothing (default). ``False``: the later stages are skipped
+        and their budget entries are NaN (used by the noise sweep).
 
     Raises
     ------
     ValueError
         Naming the stage that produced nothing: ``sky`` (an object never rises),
+        ``prediction`` (a night with no eclipse; checked before any frame is rendered),
         ``extraction`` (no target detected in any frame), ``initiation`` (no track),
-        ``association`` (no cross-station pair), ``prediction`` (no eclipse).
+        ``association`` (no cross-station pair).
     """
     cfg = config or CapstoneConfig()
+    if not isinstance(cfg, CapstoneConfig):
+        raise TypeError(f"config must be a CapstoneConfig, got {type(cfg).__name__}")
     runner = runner if runner is not None else TrialRunner(progress=False)
     if not isinstance(runner, TrialRunner):
         raise TypeError(f"runner must be a TrialRunner, got {type(runner).__name__}")
     wall = {}
     t = time.perf_counter()
     plan = make_plan(cfg)
+    eclipse_check(plan)
     wall["sky"] = time.perf_counter() - t
     t = time.perf_counter()
     bursts = runner.map(observe_burst, len(plan.bursts), seed=cfg.seed, args=(plan,),
                         desc="bursts")
     wall["frames"] = time.perf_counter() - t
-    if not any(r.target_detected.any() for r in bursts):
-        raise ValueError(f"stage 'extraction': no target detected in any of "
-                         f"{sum(len(r.target_lit) for r in bursts)} frames (targets of "
-                         f"magnitude {cfg.target_mag} against a sky of {cfg.sky_e} e⁻/px)")
-    if not any(r.tracks for r in bursts):
-        raise ValueError("stage 'initiation': no track confirmed in any burst")
+    empty_pairs = triangulate_pairs(pd.DataFrame())
+    empty_pred = pd.DataFrame(columns=["station", "object", "method", "rms_arcsec"])
     t = time.perf_counter()
-    pairs = triangulate_pairs(associate_tracklets(plan, bursts))
-    if len(pairs) == 0:
-        raise ValueError("stage 'association': no tracklet of one station matched one of the "
-                         "other — do the stations observe at the same times?")
-    pred = predict_through_eclipse(plan, bursts)
+    pairs, pred = empty_pairs, empty_pred
+    try:
+        if not any(r.target_kept.any() for r in bursts):
+            raise ValueError(f"stage 'extraction': no target detected in any of "
+                             f"{sum(len(r.target_lit) for r in bursts)} frames — no detection "
+                             f"left after star removal lies at a target (targets of magnitude "
+                             f"{cfg.target_mag} against a sky of {cfg.sky_e} e⁻/px)")
+        if not any(r.tracks for r in bursts):
+            raise ValueError("stage 'initiation': no track confirmed in any of "
+                             f"{len(bursts)} bursts")
+        pairs = triangulate_pairs(associate_tracklets(plan, bursts))
+        if len(pairs) == 0:
+            raise ValueError("stage 'association': no tracklet of one station matched one of "
+                             "the other — do the stations observe at the same times?")
+        pred = predict_through_eclipse(plan, bursts)
+    except ValueError:
+        if strict:
+            raise
+        pred = empty_pred
     wall["cross-station"] = time.perf_counter() - t
     return NightResult(plan, bursts, pairs, pred, error_budget(plan, bursts, pairs, pred), wall)
+
+
+def target_peak_snr(config: CapstoneConfig | None = None) -> float:
+    """Peak signal-to-noise ratio of a sunlit target: peak e⁻ over the background σ.
+
+    The PSF's peak pixel holds ``F / (2π σ²)`` of the flux ``F``; the noise is
+    ``sqrt(sky + read²)`` (the gradient ignored).
+    """
+    cfg = config or CapstoneConfig()
+    flux = 10 ** (-0.4 * (cfg.target_mag - cfg.zero_point_mag))
+    return float(flux / (2 * np.pi * cfg.psf_sigma_px ** 2)
+                 / np.sqrt(cfg.sky_e + cfg.read_noise_e ** 2))
+
+
+def sidereal_drift_px(config: CapstoneConfig | None = None, dec_deg: float = 0.0) -> float:
+    """Distance (px) a star drifts between two frames of a GEO-staring camera at ``dec_deg``."""
+    cfg = config or CapstoneConfig()
+    if not -90 <= float(dec_deg) <= 90:
+        raise ValueError(f"dec_deg must lie in [-90, 90], got {dec_deg}")
+    return float(EARTH_RATE_RAD_S * cfg.frame_interval_s * ARCSEC_PER_RAD
+                 * np.cos(np.radians(dec_deg)) / cfg.pixel_scale_arcsec)
+
+
+def range_error_km(range_km: float, baseline_km: float, sigma_arcsec: float) -> float:
+    """First-order range error of a two-station triangulation: ``σ_R ≈ R² σ_θ / B``.
+
+    Valid when the baseline ``B`` is perpendicular to the line of sight and ``B ≪ R``.
+    """
+    for v, n in ((range_km, "range_km"), (baseline_km, "baseline_km"),
+                 (sigma_arcsec, "sigma_arcsec")):
+        if not (np.isfinite(v) and v > 0):
+            raise ValueError(f"{n} must be a positive finite number, got {v}")
+    return float(range_km ** 2 * sigma_arcsec / ARCSEC_PER_RAD / baseline_km)
+
+
+#: Sky levels (e⁻/px) of the noise sweep behind the widget.
+SKY_LEVELS = (400.0, 1600.0, 6400.0, 25600.0)
+
+
+def noise_sweep(config: CapstoneConfig | None = None, levels: tuple[float, ...] = SKY_LEVELS,
+                *, runner: TrialRunner | None = None,
+                known: dict[float, NightResult] | None = None) -> pd.DataFrame:
+    """The error budget at several sky levels (non-strict runs: a failed stage gives NaN).
+
+    Returns
+    -------
+    pandas.DataFrame
+        Rows = budget metrics (``stage · metric``), columns = sky levels, plus the target's
+        peak S/N per level in the row ``"target peak S/N"``.
+
+    Parameters
+    ----------
+    known
+        Runs already made, keyed by sky level (reused instead of re-running that level).
+    """
+    cfg = config or CapstoneConfig()
+    cols = {}
+    for lv in levels:
+        c = replace(cfg, sky_e=float(lv))
+        res = (known or {}).get(float(lv))
+        if res is None or res.plan.config != c:
+            res = run_night(c, runner=runner, strict=False)
+        b = res.budget
+        col = pd.Series(b["value"].to_numpy(float),
+                        index=[f"{s} · {m}" for s, m in zip(b["stage"], b["metric"])])
+        col["target peak S/N"] = target_peak_snr(c)
+        cols[float(lv)] = col
+    return pd.DataFrame(cols)

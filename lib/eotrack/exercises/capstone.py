@@ -1,0 +1,64 @@
+"""Exercises of notebook 07 (the capstone); expected values come from the library."""
+
+from __future__ import annotations
+
+from eotrack.exercises import Choice, NumericAnswer, register
+
+
+def _range_error():
+    from eotrack.experiments import capstone as C
+
+    return C.range_error_km(37_000.0, 4_900.0, 1.0)
+
+
+def _drift():
+    from eotrack.experiments import capstone as C
+
+    return C.sidereal_drift_px(C.CapstoneConfig(), dec_deg=-5.0)
+
+
+def _snr_6400():
+    from eotrack.experiments import capstone as C
+
+    return C.target_peak_snr(C.with_changes(sky_e=6400.0))
+
+
+CRITIQUE_OPTIONS = (
+    "A: the Earth's shadow lasts longer when the sky is brighter",
+    "B: false tracklets enter each object's RA/Dec series unfiltered, as gross errors far "
+    "beyond notebook 01's outlier model; triangulation only sees epipolar-consistent pairs",
+    "C: two hours of data are too few for the sinusoid-plus-drift model at any noise level",
+    "D: the larger triangulation error propagates into the predicted angles",
+)
+
+register("capstone.1", NumericAnswer(
+    "Derivation. Two stations a baseline B apart (perpendicular to the line of sight) see an "
+    "object at range R with angular errors σ_θ. Show that the range error is σ_R ≈ R² σ_θ / B "
+    "to first order, and compute it in km for R = 37,000 km, B = 4,900 km, σ_θ = 1″.",
+    expected=_range_error, rtol=2e-2,
+    hint="A small rotation σ_θ of one line of sight moves the intersection along the other "
+         "line by about R σ_θ / sin(parallax), and the parallax angle is about B / R; convert "
+         "arcseconds to radians."))
+
+register("capstone.2", NumericAnswer(
+    "Computation. With the default cameras (15″ pixels, 20 s between frames) of a GEO-staring "
+    "mount, how many pixels does a star at declination −5° drift between two frames?",
+    expected=_drift, rtol=1e-2,
+    hint="The sky turns at the Earth's rotation rate (7.292e-5 rad/s); a star at declination "
+         "δ moves cos δ times that across the sky."))
+
+register("capstone.3", NumericAnswer(
+    "Exploration. In the Explore panel, move the sky background to 6,400 e⁻/px: the chain's "
+    "initiation recall falls to about one half. Read the target's peak signal-to-noise ratio "
+    "at that level from the figure title (or compute it).",
+    expected=_snr_6400, rtol=2e-2,
+    hint="Peak pixel = flux / (2π σ²); noise = sqrt(sky + read noise²); the flux comes from "
+         "the target magnitude and the zero point."))
+
+register("capstone.4", Choice(
+    "Critique. At 6,400 e⁻/px the triangulation error grows only a few-fold but the prediction "
+    "error through the eclipse explodes to thousands of arcseconds. Why? Answer with the "
+    "option's letter.",
+    options=("A", "B", "C", "D"), answer="B",
+    hint="Compare which tracklets each stage receives: the association stage gates on the "
+         "epipolar constraint; what gates the series the predictor fits?"))

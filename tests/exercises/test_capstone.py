@@ -1,0 +1,54 @@
+"""Checkers of notebook 07's exercises: right answers pass, wrong ones fail, bad ones raise."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from eotrack.exercises import check, exercise_ids
+
+SLUG = "capstone"
+RAD = 180 / np.pi * 3600
+
+
+RIGHT = {
+    # independent of the module: the formulas written out
+    "capstone.1": lambda: 37_000.0 ** 2 * (1.0 / RAD) / 4_900.0,
+    "capstone.2": lambda: 7.292115e-5 * 20.0 * RAD * np.cos(np.radians(5.0)) / 15.0,
+    "capstone.3": lambda: 10 ** (-0.4 * (12.5 - 21.0)) / (2 * np.pi) / np.sqrt(6400 + 64),
+    "capstone.4": lambda: "B",
+}
+
+WRONG = {
+    "capstone.1": lambda: 37_000.0 * (1.0 / RAD) * 4_900.0,  # R σ B, not R² σ / B
+    "capstone.2": lambda: 15.04 * 20.0,  # arcseconds, not pixels
+    "capstone.3": lambda: 10 ** (-0.4 * (12.5 - 21.0)) / np.sqrt(6400),  # total flux, not peak
+    "capstone.4": lambda: "D",
+}
+
+
+def test_at_least_four_exercises():
+    assert len(exercise_ids(SLUG)) >= 4
+    assert set(exercise_ids(SLUG)) == set(RIGHT) == set(WRONG)
+
+
+@pytest.mark.parametrize("ex", sorted(RIGHT))
+def test_right_answer_passes(ex):
+    assert check(ex, RIGHT[ex]())
+
+
+@pytest.mark.parametrize("ex", sorted(WRONG))
+def test_wrong_answer_fails(ex):
+    assert not check(ex, WRONG[ex]())
+
+
+@pytest.mark.parametrize("ex", ["capstone.1", "capstone.2", "capstone.3"])
+def test_numeric_bad_type_raises(ex):
+    with pytest.raises(TypeError):
+        check(ex, "ten")
+    with pytest.raises(ValueError):
+        check(ex, float("nan"))
+
+
+def test_choice_bad_answer_raises():
+    with pytest.raises(ValueError):
+        check("capstone.4", "E")
