@@ -1,7 +1,8 @@
 """Paper akf_star: adaptive anti-occlusion star tracking on a ship (Sheng 2026) — the ablation.
 
 Modules by role: :mod:`.scenario` (variants, settings, filters), :mod:`.trials` (extraction +
-tracking of one sequence, the Monte Carlo, the notebook's cached pieces), :mod:`.figures`
+tracking of one sequence, the Monte Carlo), :mod:`.explore` (the notebook's Explore panel:
+the reproduction's measurements, re-filtered), :mod:`.figures`
 (every plot) and :mod:`.claims` (paper tables beside ours, scorecard rows). ``reproduce`` runs
 the same configuration as notebook 05.
 """
@@ -14,6 +15,7 @@ from eotrack.montecarlo import TrialRunner
 from eotrack.repro import Reproduction, load_claims
 
 from .claims import claim_results, paper_table, side_by_side
+from .explore import ExploreSession
 from .figures import (
     VARIANT_STYLES,
     plot_confidence_trace,
@@ -42,14 +44,17 @@ from .scenario import (
 from .trials import (
     SENSITIVITY_SETTINGS,
     AblationResult,
-    ExploreSession,
+    SequenceMeasurements,
     ablation_trial,
     centroid_bias_table,
     consistency_table,
     detect_sequence,
     diurnal_check,
+    measure_sequence,
     run_ablation,
     sensitivity_table,
+    sequence_seed,
+    track_measurements,
     track_sequence,
 )
 
@@ -65,6 +70,7 @@ __all__ = [
     "AblationConfig",
     "AblationResult",
     "ExploreSession",
+    "SequenceMeasurements",
     "ablation_trial",
     "centroid_bias_table",
     "claim_results",
@@ -72,6 +78,7 @@ __all__ = [
     "detect_sequence",
     "diurnal_check",
     "make_filter",
+    "measure_sequence",
     "paper_table",
     "plot_confidence_trace",
     "plot_diurnal_check",
@@ -88,8 +95,10 @@ __all__ = [
     "reproduce",
     "run_ablation",
     "sensitivity_table",
+    "sequence_seed",
     "side_by_side",
     "singer_parameters",
+    "track_measurements",
     "track_sequence",
 ]
 

@@ -245,15 +245,37 @@ def plot_confidence_trace(seq: Any, track: Any, axes: Any = None) -> Any:
     return axes[0].figure
 
 
-def plot_explore_errors(errors: dict[str, np.ndarray], title: str, ax: Any = None) -> Any:
-    """Per-frame errors of the variants on one sequence (the Explore panel's figure)."""
+def plot_explore_errors(errors: dict[str, np.ndarray], title: str, ax: Any = None, *,
+                        gate_px: float | None = None) -> Any:
+    """Per-frame errors of the variants on one sequence (the Explore panel's figure).
+
+    The error axis is logarithmic with fixed limits (0.01 px to at least 300 px), so that
+    redraws compare at a glance; ``gate_px`` draws the association gate (an estimate above it
+    has lost the star). Plain decade labels (no mathtext), no minor ticks and a fixed legend
+    place keep a redraw cheap (the panel redraws on every control change).
+    """
+    from matplotlib.ticker import FixedLocator, FuncFormatter, NullLocator
+
     ax = _ax(ax, figsize=(7, 3.2))
+    if not isinstance(errors, dict) or not errors:
+        raise ValueError("errors must be a non-empty dict variant -> per-frame errors")
+    top = 300.0
     for name, e in errors.items():
-        ax.semilogy(np.asarray(e) + 1e-3, label=name, **VARIANT_STYLES.get(name, {}))
+        e = np.asarray(e, dtype=float)
+        if e.ndim != 1:
+            raise ValueError(f"errors[{name!r}] must be 1-D, got shape {e.shape}")
+        ax.semilogy(e + 1e-3, label=name, **VARIANT_STYLES.get(name, {}))
+        top = max(top, 2.0 * float(np.nanmax(e, initial=0.0)))
+    if gate_px is not None:
+        ax.axhline(gate_px, color="0.5", lw=0.8, ls=":", label=f"gate ({gate_px:g} px)")
+    ax.set_ylim(1e-2, top)
+    ax.yaxis.set_major_locator(FixedLocator(10.0 ** np.arange(-2, np.ceil(np.log10(top)) + 1)))
+    ax.yaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
+    ax.yaxis.set_minor_locator(NullLocator())
     ax.set_xlabel("frame")
     ax.set_ylabel("error (px)")
     ax.set_title(title, fontsize=9)
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=8, loc="upper left", ncol=len(errors) + (gate_px is not None))
     return ax.figure
 
 

@@ -1,5 +1,5 @@
-"""akf_star trials: extraction + tracking of one sequence, the ablation Monte Carlo, and the
-cached pieces the notebook's Explore panel and "Beyond" section use.
+"""akf_star trials: extraction + tracking of one sequence, the ablation Monte Carlo (which keeps
+its measurements for the Explore panel, :mod:`.explore`), and the "Beyond" computations.
 
 Four variants (Baseline, BEAK-ST-GT, BEAK-ST-SKF, BEAK-ST) × five scenarios (strong light,
 cloud occlusion, ship sway, stray light, low SNR) × seeds × 200 frames of a simulated real-sky
@@ -13,30 +13,39 @@ the rate ``P_s`` (eqs. 49–50), and a continuity measure (estimate inside the a
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
-from functools import lru_cache
 from typing import Any
 
 import numpy as np
 import pandas as pd
 
 from eotrack.imaging.extraction import ExtractionConfig, extract_stars, image_confidence
-from eotrack.imaging.star_sensor_sim import SCENARIOS, StarSequence, scenario, simulate_sequence
+from eotrack.imaging.star_sensor_sim import (
+    SCENARIOS,
+    Scenario,
+    SensorConfig,
+    StarSequence,
+    simulate_sequence,
+)
 from eotrack.montecarlo import TrialRunner, run_trials
 from eotrack.tracking.kalman import ConfidenceConfig, TrackResult, nees, nis, track_nearest
+from eotrack.validation import check_choice, check_int
 
 from .scenario import SCENARIO_LABELS, VARIANT_PARTS, VARIANTS, AblationConfig, make_filter
 
 __all__ = [
     "SENSITIVITY_SETTINGS",
     "AblationResult",
-    "ExploreSession",
+    "SequenceMeasurements",
     "ablation_trial",
     "centroid_bias_table",
     "consistency_table",
     "detect_sequence",
     "diurnal_check",
+    "measure_sequence",
     "run_ablation",
     "sensitivity_table",
+    "sequence_seed",
+    "track_measurements",
     "track_sequence",
 ]
 
@@ -66,6 +75,81 @@ def detect_sequence(seq: StarSequence, method: str, cfg: AblationConfig
     return dets, c_img
 
 
+@dataclass(frozen=True)
+class SequenceMeasurements:
+    """What the filters see of one simulated sequence (the images themselves are dropped).
+
+    Attributes
+    ----------
+    truth
+        True position of the reference star ``(n, 2)`` (pixels).
+    x0
+        Initial position handed to every filter (the truth of frame 0 plus a 0.3 px error).
+    sensor
+        The sensor that took the sequence (frame period, focal length).
+    detections
+        Extraction method → (per-frame centroids, per-frame C_img), as
+        :func:`detect_sequence` returns them.
+    visible
+        Cloud transmission at the reference star ``(n,)``.
+    """
+
+    truth: np.ndarray
+    x0: np.ndarray
+    sensor: SensorConfig
+    detections: dict[str, tuple[list[np.ndarray], list[np.ndarray]]]
+    visible: np.ndarray
+
+
+def measure_sequence(rng: np.random.Generator, scenario_: Scenario | str, cfg: AblationConfig,
+                     methods: tuple[str, ...] = ("global", "adaptive")) -> SequenceMeasurements:
+    """Simulate one sequence, draw the filters' initial position and extract the stars.
+
+    The random draws are those of :func:`ablation_trial` (simulation, then the 0.3 px initial
+    error), so the same generator gives the same measurements as the ablation's trial.
+
+    Parameters
+    ----------
+    rng
+        Random generator of the trial.
+    scenario_
+        A :class:`eotrack.imaging.Scenario` or a preset name.
+    cfg
+        Frames and extraction settings.
+    methods
+        Extraction methods to run (``"global"``, ``"adaptive"``).
+    """
+    for m in methods:
+        check_choice(m, "methods", ("global", "adaptive", "sky"))
+    seq = simulate_sequence(rng, scenario_, n_frames=cfg.n_frames)
+    x0 = seq.truth[0] + rng.normal(0, 0.3, 2)
+    return SequenceMeasurements(seq.truth, x0, seq.info["sensor"],
+                                {m: detect_sequence(seq, m, cfg) for m in methods},
+                                seq.visible)
+
+
+def track_measurements(meas: SequenceMeasurements, cfg: AblationConfig, *,
+                       variants: dict[str, tuple[str, str]] | None = None
+                       ) -> dict[str, TrackResult]:
+    """Run each variant (extraction method, filter kind) on stored measurements (no simulation,
+    no extraction: a filter-setting change costs only the filters)."""
+    variants = VARIANT_PARTS if variants is None else variants
+    missing = {m for m, _ in variants.values()} - set(meas.detections)
+    if missing:
+        raise ValueError(f"variants need extraction methods {sorted(missing)} that meas does "
+                         f"not hold (it has {sorted(meas.detections)})")
+    out = {}
+    for name, (method, kind) in variants.items():
+        dets, c_img = meas.detections[method]
+        filt = make_filter(kind, meas.x0, meas.sensor, cfg)
+        res = track_nearest(filt, dets, gate_px=cfg.gate_px, gate_sigma=cfg.gate_sigma,
+                            gate_max_px=cfg.gate_max_px, hold_after=cfg.hold_after,
+                            c_img=c_img)
+        res.extra["n_detections"] = np.array([len(d) for d in dets])
+        out[name] = res
+    return out
+
+
 def track_sequence(seq: StarSequence, cfg: AblationConfig, rng: np.random.Generator, *,
                    variants: dict[str, tuple[str, str]] | None = None,
                    detections: dict[str, tuple[list[np.ndarray], list[np.ndarray]]] | None = None
@@ -77,31 +161,25 @@ def track_sequence(seq: StarSequence, cfg: AblationConfig, rng: np.random.Genera
     :func:`detect_sequence`) skips the extraction, e.g. when only filter settings change.
     """
     variants = VARIANT_PARTS if variants is None else variants
-    sensor = seq.info["sensor"]
     x0 = seq.truth[0] + rng.normal(0, 0.3, 2)
     cache: dict[str, tuple[list[np.ndarray], list[np.ndarray]]] = dict(detections or {})
-    out = {}
-    for name, (method, kind) in variants.items():
+    for method, _ in variants.values():
         if method not in cache:
             cache[method] = detect_sequence(seq, method, cfg)
-        dets, c_img = cache[method]
-        filt = make_filter(kind, x0, sensor, cfg)
-        res = track_nearest(filt, dets, gate_px=cfg.gate_px, gate_sigma=cfg.gate_sigma,
-                            gate_max_px=cfg.gate_max_px, hold_after=cfg.hold_after,
-                            c_img=c_img)
-        res.extra["n_detections"] = np.array([len(d) for d in dets])
-        out[name] = res
-    return out
+    meas = SequenceMeasurements(seq.truth, x0, seq.info["sensor"], cache, seq.visible)
+    return track_measurements(meas, cfg, variants=variants)
 
 
 def ablation_trial(rng: np.random.Generator, scenario_name: str, cfg: AblationConfig
                    ) -> dict[str, Any]:
-    """One sequence of ``scenario_name``: per-frame errors and modes of the four variants."""
-    seq = simulate_sequence(rng, scenario_name, n_frames=cfg.n_frames)
-    res = track_sequence(seq, cfg, rng)
-    err = np.stack([np.hypot(*(r.xs[:, :2] - seq.truth).T) for r in res.values()])
+    """One sequence of ``scenario_name``: per-frame errors and modes of the four variants, and
+    the measurements they were computed from (for the notebook's Explore panel)."""
+    meas = measure_sequence(rng, scenario_name, cfg)
+    res = track_measurements(meas, cfg)
+    err = np.stack([np.hypot(*(r.xs[:, :2] - meas.truth).T) for r in res.values()])
     modes = np.stack([r.modes for r in res.values()])
-    return {"errors": err.astype(np.float32), "modes": modes, "visible": seq.visible}
+    return {"errors": err.astype(np.float32), "modes": modes, "visible": meas.visible,
+            "measurements": meas}
 
 
 @dataclass
@@ -120,6 +198,9 @@ class AblationResult:
         Axis labels.
     config
         The :class:`AblationConfig`.
+    measurements
+        ``measurements[i][k]``: the :class:`SequenceMeasurements` of scenario ``i``, sequence
+        ``k`` (what the Explore panel re-filters without simulating again), or ``None``.
     """
 
     errors: np.ndarray
@@ -128,6 +209,7 @@ class AblationResult:
     scenarios: tuple[str, ...]
     variants: tuple[str, ...]
     config: AblationConfig
+    measurements: tuple[tuple[SequenceMeasurements, ...], ...] | None = None
 
     def mean_error(self) -> pd.DataFrame:
         """Table 1: mean error E (eq. 48) per scenario and variant."""
@@ -160,87 +242,24 @@ def run_ablation(cfg: AblationConfig | None = None, *, runner: TrialRunner | Non
                  scenarios: tuple[str, ...] = SCENARIOS) -> AblationResult:
     """Run the four variants on ``cfg.n_seeds`` sequences of each scenario."""
     cfg = AblationConfig() if cfg is None else cfg
-    errs, modes, vis = [], [], []
+    errs, modes, vis, meas = [], [], [], []
     for i, sc in enumerate(scenarios):
-        out = run_trials(ablation_trial, cfg.n_seeds, seed=cfg.seed + i, args=(sc, cfg), runner=runner,
-                         desc=f"akf_star {sc}")
+        out = run_trials(ablation_trial, cfg.n_seeds, seed=sequence_seed(cfg, i),
+                         args=(sc, cfg), runner=runner, desc=f"akf_star {sc}")
         errs.append(np.stack([o["errors"] for o in out]))
         modes.append(np.stack([o["modes"] for o in out]))
         vis.append(np.stack([o["visible"] for o in out]))
+        meas.append(tuple(o["measurements"] for o in out))
     return AblationResult(np.stack(errs), np.stack(modes), np.stack(vis), tuple(scenarios),
-                          VARIANTS, cfg)
+                          VARIANTS, cfg, tuple(meas))
 
 
+def sequence_seed(cfg: AblationConfig, scenario_index: int) -> int:
+    """Root seed of the ablation's sequences of the ``scenario_index``-th scenario; sequence
+    ``k`` gets ``trial_generators(sequence_seed(cfg, i), k + 1)[k]``."""
+    return cfg.seed + check_int(scenario_index, "scenario_index", min_value=0)
 
 
-# --------------------------------------------------------------------------------------------
-# the Explore panel: simulate and extract once, re-filter on every filter-only change
-# --------------------------------------------------------------------------------------------
-
-class ExploreSession:
-    """Cached sequences and detections for the notebook's Explore panel.
-
-    The sequence (keyed by scenario, seed and occlusion length) and its detections (keyed also
-    by the extraction thresholds k, k_b) are computed once; a change of a filter setting only
-    re-runs the filters on the cached detections.
-    """
-
-    def __init__(self, n_frames: int = 200, maxsize: int = 16) -> None:
-        self.n_frames = int(n_frames)
-        self._sequence = lru_cache(maxsize=maxsize)(self._make_sequence)
-        self._detections = lru_cache(maxsize=maxsize)(self._make_detections)
-        self._standard = lru_cache(maxsize=maxsize)(self._make_standard)
-
-    def _make_sequence(self, scenario_name: str, seed: int, occlusion_frames: int
-                       ) -> StarSequence:
-        sc = scenario(scenario_name, occlusion_frames=int(occlusion_frames))
-        return simulate_sequence(np.random.default_rng(seed), sc, n_frames=self.n_frames)
-
-    def _make_detections(self, scenario_name: str, seed: int, occlusion_frames: int,
-                         k: float, k_b: float) -> dict[str, Any]:
-        seq = self._sequence(scenario_name, seed, occlusion_frames)
-        cfg = AblationConfig(extraction=ExtractionConfig(k=k, k_b=k_b))
-        return {m: detect_sequence(seq, m, cfg) for m in ("global", "adaptive")}
-
-    def _make_standard(self, scenario_name: str, seed: int, occlusion_frames: int, k: float,
-                       k_b: float) -> dict[str, np.ndarray]:
-        """Errors of the variants with the standard KF (they ignore the confidence settings)."""
-        seq = self._sequence(scenario_name, seed, occlusion_frames)
-        det = self._detections(scenario_name, seed, occlusion_frames, k, k_b)
-        cfg = AblationConfig(n_frames=self.n_frames, extraction=ExtractionConfig(k=k, k_b=k_b))
-        kf = {v: p for v, p in VARIANT_PARTS.items() if p[1] == "kf"}
-        res = track_sequence(seq, cfg, np.random.default_rng(seed), variants=kf, detections=det)
-        return {v: np.hypot(*(r.xs[:, :2] - seq.truth).T) for v, r in res.items()}
-
-    def sequence(self, scenario_name: str, seed: int = 0, occlusion_frames: int = 10
-                 ) -> StarSequence:
-        """The (cached) simulated sequence."""
-        return self._sequence(scenario_name, int(seed), int(occlusion_frames))
-
-    def errors(self, scenario_name: str = "cloud", *, seed: int = 0, occlusion_frames: int = 10,
-               k: float = 4.0, k_b: float = 3.0, confidence: ConfidenceConfig | None = None,
-               variants: tuple[str, ...] = VARIANTS) -> dict[str, np.ndarray]:
-        """Per-frame errors of ``variants`` on one (cached) sequence.
-
-        Only the confidence-filter variants are re-run when ``confidence`` changes; the
-        standard-KF variants and the detections come from the cache.
-        """
-        unknown = set(variants) - set(VARIANTS)
-        if unknown:
-            raise ValueError(f"variants must be among {VARIANTS}, got {sorted(unknown)}")
-        key = (scenario_name, int(seed), int(occlusion_frames), float(k), float(k_b))
-        seq = self._sequence(*key[:3])
-        det = self._detections(*key)
-        cfg = AblationConfig(n_frames=self.n_frames,
-                             confidence=confidence or ConfidenceConfig(),
-                             extraction=ExtractionConfig(k=k, k_b=k_b))
-        akf = {v: p for v, p in VARIANT_PARTS.items() if p[1] == "akf" and v in variants}
-        out = dict(self._standard(*key))
-        if akf:
-            res = track_sequence(seq, cfg, np.random.default_rng(seed), variants=akf,
-                                 detections=det)
-            out.update({v: np.hypot(*(r.xs[:, :2] - seq.truth).T) for v, r in res.items()})
-        return {v: out[v] for v in VARIANTS if v in variants}
 
 
 # --------------------------------------------------------------------------------------------
