@@ -112,11 +112,11 @@ runner = TrialRunner(progress=False)
 # | $\rho, \theta$ | image line $\rho = x\cos\theta + y\sin\theta$, eq. (1), θ ∈ [0°, 180°) | `rho_px`, `theta_deg` | px, ° |
 # | $v, s$ | speed and direction along the line (+ = along $(\sin\theta, -\cos\theta)$) | `speed_px_s`, `s` | px/s, ±1 |
 # | $\delta\rho, \delta\theta, \delta v$ | cell sizes | `d_rho`, `d_theta_deg`, `d_v` | px, °, px/s |
-# | $[v_{min}, v_{max}]$ | velocity gate, eq. (7) | `v_min`, `v_max` | px/s |
+# | $[v_{min}, v_{max}]$ | velocity gate (lost formula) | `v_min`, `v_max` | px/s |
 # | $m$, $(m-1)/m$ | window and confirmation rule (3/4) | `m` | frames |
 # | $O_k$ | candidates of frame k | `frames[k][1]` | – |
 # | $S_{kj}, S_{ki}$ | cells voted by the pairs (k, k−1), (k, k−2) | – | – |
-# | $P(t), Q(t)$ | votes and point set of cell t, eq. (8) | vote mask, stored pairs | – |
+# | $P(t), Q(t)$ | votes and point set of cell t | vote mask, stored pairs | – |
 # | $\sigma$ | centroid noise per axis (ours) | `sigma_px` | px |
 # | $\alpha$ | false-rejection probability of the χ² test (ours) | `alpha` | – |
 # | $\lambda$ | non-object detections per frame (clutter + residual stars) | `clutter_per_frame` | 1/frame |
@@ -147,11 +147,13 @@ assert pair_parameters(b, a, 1.0)[3][0] == -1
 print(f"ρ = {rho:.3f} px, θ = {math.degrees(theta):.3f}°, v = {v:.3f} px/s, s = {s:+d}")
 
 # %% [markdown]
-# ### 4.2 The velocity gate, eq. (7)
+# ### 4.2 The velocity gate
 #
-# The gate's formula is lost in our source; its sense is clear: only pairs with
+# The gate's formula is lost in our source (the digest numbers it (7); the paper's step list
+# cites (7) and (8) for the update of P and Q, so the numbering of the lost equations is
+# uncertain — see Errata); its sense is clear: only pairs with
 #
-# $$v_{min} \le \frac{|b - a|}{t_b - t_a} \le v_{max} \tag{7}$$
+# $$v_{min} \le \frac{|b - a|}{t_b - t_a} \le v_{max}$$
 #
 # vote. A static residual star never pairs with itself (v ≈ 0); pairs of *different* stars can
 # still pass. The library forms every gated pair of two frames in one broadcast
@@ -197,6 +199,20 @@ assert [e["confirmed"] for e in run.log] == [0, 0, 1, 4]
 pd.DataFrame(run.log)[["frame", "candidates", "pairs", "created", "tentative", "confirmed"]]
 
 # %% [markdown]
+# **The other equations of §3**, lost in our source and rebuilt from the text (our notation):
+#
+# * parameter space: $\rho \in [-\rho_{max}, \rho_{max}]$, $\theta \in [0, \pi)$,
+#   $v \in [v_{min}, v_{max}]$, $s \in \{+, -\}$; cells
+#   $\rho_n = \lfloor \rho/\delta\rho \rfloor$, $\theta_n = \lfloor \theta/\delta\theta \rfloor$,
+#   $v_n = \lfloor v/\delta v \rfloor$;
+# * the pair's line: with $\Delta = b - a$, $(\cos\theta, \sin\theta) = \pm(-\Delta_y, \Delta_x)/|\Delta|$
+#   (sign chosen so that $\theta \in [0, \pi)$), then ρ from eq. (1) and $s = \operatorname{sign}(\Delta\cdot(\sin\theta, -\cos\theta))$;
+# * point sets: $Q(t) \leftarrow Q(t) \cup \{(a, b)\}$ for every gated pair of cell $t$;
+# * expiry after extraction: the votes and pairs of frame $k - m + 1$ leave $P$ and $Q$;
+# * neighbour test: $(\rho, \theta) = f(Q(t))$, the least-squares line through $Q(t)$, must be
+#   close to the cell $t'$ ($|\rho - \rho'| \le 1.5\,\delta\rho$, $|\theta - \theta'| \le
+#   1.5\,\delta\theta$, our reading), and the track is confirmed when $P(t) + P(t') = m - 1$.
+#
 # ### 4.4 Drawing the (ρ, θ) voting; the 6- and 26-neighbourhoods
 #
 # Noise spreads the pairs of one object over neighbouring cells. For a cell $t \in S_k$ with
@@ -541,9 +557,11 @@ explore = panel(draw,
 #   is our assumption.
 # * **The vote count P, eq. (8)**: read as "+1 per current frame" it contradicts the paper's
 #   confirmation frames; we count the distinct frames whose detections are in Q(t) (§4.3).
-# * **Eq. (7)** (velocity gate) and the neighbour condition lost their formulas; we use
-#   $v_{min} \le |\Delta xy|/\Delta t \le v_{max}$ and require the least-squares line of Q(t)
-#   within 1.5 cells of t′'s centre.
+# * **Lost formulas**: the velocity gate, the pair's θ, the parameter ranges, the P/Q updates and
+#   the neighbour condition lost their formulas (§4.3). Their numbering is uncertain: the digest
+#   calls the gate (7), while the paper's step list updates P and Q "by (7) and (8)" and expires
+#   old votes "by (9)". We use $v_{min} \le |\Delta xy|/\Delta t \le v_{max}$ and require the
+#   least-squares line of Q(t) within 1.5 cells of t′'s centre.
 # * **Direction s**: "+ = increasing x and y" is ambiguous when one decreases; + is along
 #   $(\sin\theta, -\cos\theta)$.
 # * **Origin of ρ** is not stated; the literal procedure uses the image corner (§4.4 shows what
