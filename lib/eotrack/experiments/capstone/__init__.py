@@ -9,6 +9,16 @@ triangulation → prediction, and the error budget), :mod:`.figures` (plots). Th
 
 from __future__ import annotations
 
+from .figures import (
+    frame_example,
+    plot_budget,
+    plot_frame,
+    plot_night,
+    plot_pipeline,
+    plot_prediction,
+    plot_sweep,
+    plot_triangulation,
+)
 from .pipeline import (
     PREDICTORS,
     SKY_LEVELS,
@@ -62,9 +72,17 @@ __all__ = [
     "camera_matrix",
     "eclipse_check",
     "error_budget",
+    "frame_example",
     "make_plan",
     "noise_sweep",
     "observe_burst",
+    "plot_budget",
+    "plot_frame",
+    "plot_night",
+    "plot_pipeline",
+    "plot_prediction",
+    "plot_sweep",
+    "plot_triangulation",
     "predict_through_eclipse",
     "range_error_km",
     "render_frame",

@@ -39,7 +39,7 @@ def _ax(ax, figsize=(7, 4)):
 def plot_pipeline(*, ax: plt.Axes | None = None) -> plt.Axes:
     """Block diagram of the chain: two stations' per-frame stages merging into the 3-D ones."""
     ax = _ax(ax, (11, 4.2))
-    ax.set_xlim(0, 11)
+    ax.set_xlim(0, 11.2)
     ax.set_ylim(0, 4.2)
     ax.axis("off")
     per_station = [("frames\nPSF · noise · sky", "imaging"), ("extraction\nsky extractor", "nb 05"),
