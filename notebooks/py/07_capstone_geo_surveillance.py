@@ -171,8 +171,8 @@ ax = C.plot_frame(example)
 sigma_theta = 0.2 * cfg.pixel_scale_arcsec  # ≈ 0.2 px centroid error
 display(Markdown(
     f"With R ≈ 37,000 km, B = {baseline_km:,.0f} km and σ_θ ≈ {sigma_theta:.0f}″ the expected "
-    f"range error is ≈ {C.range_error_km(37_000, baseline_km, sigma_theta):.1f} km "
-    "(the baseline is not perpendicular to every line of sight, so the real error is larger)."))
+    f"range error is ≈ {C.range_error_km(37_000, baseline_km, sigma_theta):.1f} km — compare "
+    "it with the measured errors in the budget below."))
 
 # %% [markdown]
 # ### 6. Prediction through the eclipse
@@ -259,16 +259,16 @@ print("association all correct:", val["correct pairs"] == 1.0)
 axes = C.plot_budget(night)
 
 # %% [markdown]
-# The range errors over the night, by object (the low-elevation passes of XM-3 from Haleakalā
-# have the least favourable geometry):
+# The range errors over the night, by object. Do they depend on the object, or on the time
+# (the geometry of the two lines of sight changes through the night)?
 
 # %%
 ax = C.plot_triangulation(night)
 
 # %% [markdown]
-# Prediction through the eclipse, per station and object (log scale). The two station-kept
-# objects are predicted to a few arcseconds; the inclined drifter 14128, whose topocentric
-# motion the sinusoid-plus-drift model describes less well, to about ten.
+# Prediction through the eclipse, per station and object (log scale). Compare the two
+# station-kept objects with the inclined drifter 14128, whose topocentric motion over two
+# hours is further from the sinusoid-plus-drift model.
 
 # %%
 night.prediction.pivot_table(index=["station", "object"], columns="method",
@@ -300,7 +300,7 @@ display(Markdown(f"Sweep of {len(SKY_LEVELS)} sky levels: {time.perf_counter() -
 
 
 def draw(sky):
-    fig, axes = plt.subplots(1, 2, figsize=(10, 3.4), dpi=90)
+    fig, axes = plt.subplots(1, 2, figsize=(10, 3.6), dpi=90, layout="constrained")
     C.plot_sweep(sweep, sky, axes=axes)
     return fig
 
@@ -332,11 +332,11 @@ sweep
 # %% [markdown]
 # ## Beyond the paper
 #
-# **Where the errors of one stage become the inputs of the next.** Read the sweep above: at
-# 6,400 e⁻/px the extraction still finds most targets and triangulation degrades gracefully,
-# because association only passes pairs that satisfy the epipolar constraint. The predictor
-# has no such gate: every tracklet found in an object's field enters its series, so false
-# tracks arrive as gross errors far larger and more frequent than notebook 01's outlier model.
+# **Where the errors of one stage become the inputs of the next.** Read the sweep above at
+# 6,400 e⁻/px (numbers below). Association only passes pairs that satisfy the epipolar
+# constraint, so false tracks rarely reach triangulation. The predictor has no such gate:
+# every tracklet found in an object's field enters its series, so false tracks arrive as
+# gross errors larger and more frequent than notebook 01's outlier model.
 
 # %%
 at = 6400.0

@@ -6,6 +6,8 @@ import numpy as np
 import pytest
 from eotrack.experiments import capstone as C
 from eotrack.montecarlo import TrialRunner, trial_generators
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 #: A short night around XM-3's eclipse (umbra entry ≈ 05:25 UTC): cheap but complete.
 SHORT = C.with_changes(night_start_utc="2006-03-25T03:00:00", night_hours=3.5,
@@ -47,6 +49,29 @@ def test_separate_targets_by_motion_and_catalogue():
         assert np.flatnonzero(is_cand[k]).tolist() == [30]
     with pytest.raises(ValueError, match="drift"):
         C.separate_targets(det, sxy, drift[:2], 256)
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.integers(0, 40), st.integers(0, 40), st.floats(-30, 30), st.integers(0, 2**31))
+def test_separate_targets_masks_are_disjoint(n_stars, n_other, dx, seed):
+    rng = np.random.default_rng(seed)
+    stars = rng.uniform(0, 128, (n_stars, 2))
+    det = [np.vstack([stars + k * np.array([dx, 0.0]), rng.uniform(0, 128, (n_other, 2))])
+           for k in range(3)]
+    sxy = [d[: n_stars // 2] for d in det]
+    is_cat, is_cand = C.separate_targets(det, sxy, np.array([[dx, 0.0]] * 2), 128)
+    for k in range(3):
+        assert is_cat[k].shape == is_cand[k].shape == (len(det[k]),)
+        assert not np.any(is_cat[k] & is_cand[k])
+
+
+def test_bad_config_types():
+    with pytest.raises(TypeError, match="config"):
+        C.make_plan("tonight")
+    with pytest.raises(TypeError, match="config"):
+        C.target_peak_snr(3)
+    with pytest.raises(ValueError, match="levels"):
+        C.noise_sweep(levels=(400.0, -1.0))
 
 
 def test_simple_formulas():

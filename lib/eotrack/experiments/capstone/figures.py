@@ -219,7 +219,7 @@ def plot_prediction(prediction: pd.DataFrame, *, ax: plt.Axes | None = None) -> 
 def plot_sweep(sweep: pd.DataFrame, level: float, *, axes=None):
     """The chain against the sky level: fractions (left) and errors (right); ``level`` marked."""
     if axes is None:
-        _, axes = plt.subplots(1, 2, figsize=(10, 3.4), dpi=90)
+        _, axes = plt.subplots(1, 2, figsize=(10, 3.6), dpi=90, layout="constrained")
     a0, a1 = axes
     x = np.asarray(sweep.columns, float)
     for key, lab in _FRACTIONS:
@@ -235,7 +235,7 @@ def plot_sweep(sweep: pd.DataFrame, level: float, *, axes=None):
     for a in axes:
         a.set_xscale("log")
         a.set_xlabel("sky background (e⁻/px)")
-        a.axvline(level, color="r", lw=1)
+        a.axvline(level, color="k", ls="--", lw=1)
         a.legend(fontsize=7)
         a.minorticks_off()
     snr = float(sweep.loc["target peak S/N", level]) if level in sweep.columns else np.nan

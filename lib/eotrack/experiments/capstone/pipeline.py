@@ -609,13 +609,20 @@ def run_night(config: CapstoneConfig | None = None, *, runner: TrialRunner | Non
     return NightResult(plan, bursts, pairs, pred, error_budget(plan, bursts, pairs, pred), wall)
 
 
+def _config(config) -> CapstoneConfig:
+    cfg = CapstoneConfig() if config is None else config
+    if not isinstance(cfg, CapstoneConfig):
+        raise TypeError(f"config must be a CapstoneConfig, got {type(cfg).__name__}")
+    return cfg
+
+
 def target_peak_snr(config: CapstoneConfig | None = None) -> float:
     """Peak signal-to-noise ratio of a sunlit target: peak e⁻ over the background σ.
 
     The PSF's peak pixel holds ``F / (2π σ²)`` of the flux ``F``; the noise is
     ``sqrt(sky + read²)`` (the gradient ignored).
     """
-    cfg = config or CapstoneConfig()
+    cfg = _config(config)
     flux = 10 ** (-0.4 * (cfg.target_mag - cfg.zero_point_mag))
     return float(flux / (2 * np.pi * cfg.psf_sigma_px ** 2)
                  / np.sqrt(cfg.sky_e + cfg.read_noise_e ** 2))
@@ -623,7 +630,7 @@ def target_peak_snr(config: CapstoneConfig | None = None) -> float:
 
 def sidereal_drift_px(config: CapstoneConfig | None = None, dec_deg: float = 0.0) -> float:
     """Distance (px) a star drifts between two frames of a GEO-staring camera at ``dec_deg``."""
-    cfg = config or CapstoneConfig()
+    cfg = _config(config)
     if not -90 <= float(dec_deg) <= 90:
         raise ValueError(f"dec_deg must lie in [-90, 90], got {dec_deg}")
     return float(EARTH_RATE_RAD_S * cfg.frame_interval_s * ARCSEC_PER_RAD
@@ -662,7 +669,9 @@ def noise_sweep(config: CapstoneConfig | None = None, levels: tuple[float, ...] 
     known
         Runs already made, keyed by sky level (reused instead of re-running that level).
     """
-    cfg = config or CapstoneConfig()
+    cfg = _config(config)
+    if len(levels) == 0 or not all(np.isfinite(v) and v > 0 for v in levels):
+        raise ValueError(f"levels must be positive sky levels (e⁻/px), got {levels!r}")
     cols = {}
     for lv in levels:
         c = replace(cfg, sky_e=float(lv))

@@ -291,7 +291,10 @@ def make_plan(config: CapstoneConfig | None = None) -> NightPlan:
         Stage ``sky``: an object never rises above ``min_elevation_deg`` at a station during
         that station's dark hours, or a station has no dark hours at all.
     """
-    return _plan_cached(config or CapstoneConfig())
+    cfg = CapstoneConfig() if config is None else config
+    if not isinstance(cfg, CapstoneConfig):
+        raise TypeError(f"config must be a CapstoneConfig, got {type(cfg).__name__}")
+    return _plan_cached(cfg)
 
 
 @lru_cache(maxsize=16)
