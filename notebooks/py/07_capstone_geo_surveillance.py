@@ -243,12 +243,6 @@ assert val["recall (bursts with ≥ 3 sunlit frames)"] > 0.9
 assert val["correct pairs"] == 1.0
 assert 0.3 < val["median |range error|"] < 10.0
 
-# %%
-# NBVAL_CHECK_OUTPUT
-print("every stage produced output:",
-      all(np.isfinite(budget["value"])) and len(night.pairs) > 0 and len(night.prediction) > 0)
-print("association all correct:", val["correct pairs"] == 1.0)
-
 # %% [markdown]
 # ### Error budget figure
 #
@@ -281,9 +275,17 @@ ax = C.plot_prediction(night.prediction)
 # ## Scorecard
 #
 # No paper claims are at stake here, so there is no `claims.toml` and no `reproduce()`: the
-# scorecard is the chain's own acceptance — did every stage produce output, and is the
-# association error-free on this night? (Printed in the marked cell of the table above.)
-# The numbers themselves are in the budget table.
+# scorecard is the chain's own acceptance: did every stage produce output, was the
+# association error-free on this night, and did the Dask run reproduce the serial one? The
+# numbers themselves are in the budget table.
+
+# %%
+# NBVAL_CHECK_OUTPUT
+print("every stage produced output:",
+      all(np.isfinite(budget["value"])) and len(night.pairs) > 0 and len(night.prediction) > 0)
+print("association all correct:", val["correct pairs"] == 1.0)
+if CLUSTER_DEMO:
+    print("serial == LocalCluster:", bool(same))
 
 # %% [markdown]
 # ## Explore
