@@ -13,7 +13,8 @@
 # published paper on tracking space objects with electro-optical (EO) sensors — telescopes and
 # star sensors — and rebuilds it from scratch: every equation written out and implemented, the
 # paper's figures and tables re-run with the paper's numbers beside ours, the parameters put on
-# sliders, and exercises with a checker. The methods come from a small tested library,
+# sliders, and exercises with a checker (a capstone, where there is one, chains the methods
+# into one system). The methods come from a small tested library,
 # `eotrack` (robust estimation, geometry, astronomy, imaging, tracking, pose).
 #
 # **Who it is for.**
@@ -71,8 +72,9 @@ PATH = {
            "02", "Kalman filter, process noise"),
     "06": ("pose of a non-cooperative spacecraft: PnP, RANSAC, Cramér–Rao bound, feature "
            "selection", "01, 02", "Fisher information, PnP"),
-    "07": ("capstone: a small tracking chain built from the pieces of 01–06",
-           "01–06", "all of the above"),
+    "07": ("capstone: one night of GEO surveillance through the whole chain — rendering, "
+           "extraction, initiation, association, triangulation, prediction — and its error "
+           "budget", "01–05", "all of the above"),
 }
 rows = ["| # | notebook | topic | after | maths | worked solutions |", "|---|---|---|---|---|---|"]
 for nb in notebooks[notebooks["number"] != "00"].itertuples():
@@ -80,6 +82,12 @@ for nb in notebooks[notebooks["number"] != "00"].itertuples():
     sol = f"[solutions]({nb.solutions})" if nb.solutions else "—"
     rows.append(f"| {nb.number} | [{nb.title}]({nb.path}) | {topic} | {after} | {maths} | {sol} |")
 display(Markdown("\n".join(rows)))
+# notebooks that reproduce no paper of their own (a capstone) compose the others: take them last
+extra = notebooks[(notebooks["number"] != "00") & ~notebooks["stem"].isin(scores["notebook"])]
+if len(extra):
+    links = ", ".join(f"[{r.number} · {r.title}]({r.path})" for r in extra.itertuples())
+    display(Markdown(f"Not tied to one paper: {links} — it composes the methods of the "
+                     "notebooks before it, so take it last."))
 
 # %% [markdown]
 # ## Scorecard of the collection
@@ -149,7 +157,8 @@ if answer is not None:
 
 # %% tags=["hide-input"]
 ids = exercise_ids()
-counts = {s: sum(1 for i in ids if i.split(".")[0] == s) for s in scores["slug"]}
+slugs = list(scores["slug"]) + sorted({i.split(".")[0] for i in ids} - set(scores["slug"]))
+counts = {s: sum(1 for i in ids if i.split(".")[0] == s) for s in slugs}
 display(Markdown("\n".join(
     ["| paper | exercises | ids |", "|---|---|---|"]
     + [f"| {s} | {n} | {', '.join(i for i in ids if i.startswith(s + '.')) or '—'} |"
