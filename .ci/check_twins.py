@@ -24,7 +24,7 @@ import execute_notebooks as ex  # .ci/execute_notebooks.py
 
 # TODO(issue 10): switch to True once every notebook has been re-executed with
 # `.ci/execute_notebooks.py` (ipykernel kernelspec, widget state, no stray reprs).
-HYGIENE_FAILS = False
+HYGIENE_FAILS = True
 
 STRAY = ("<function __main__", "(<Figure size")
 
