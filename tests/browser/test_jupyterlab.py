@@ -291,8 +291,9 @@ def _output_problems(page) -> list[str]:
     return problems
 
 
-def _move_first_control(page, panel) -> str:
-    """Move the panel's first control one step; return a description of what was moved."""
+def _first_control(page, panel):
+    """Find the panel's first control; return (description, action) where ``action()`` moves it
+    one step. All look-ups happen here, so the timed part is the user's action alone."""
     control = panel.locator(".widget-slider, .widget-toggle-button, .widget-checkbox, "
                             ".widget-dropdown").first
     if control.count() == 0:
@@ -306,19 +307,17 @@ def _move_first_control(page, panel) -> str:
         now, hi = handle.get_attribute("aria-valuenow"), handle.get_attribute("aria-valuemax")
         key = "ArrowLeft" if now is not None and now == hi else "ArrowRight"
         handle.focus()
-        handle.press(key)
-        return f"slider {name!r} {key}"
+        return f"slider {name!r} {key}", lambda: page.keyboard.press(key)
     if "widget-dropdown" in classes:
         select = control.locator("select")
         n = select.locator("option").count()
         i = select.evaluate("s => s.selectedIndex")
-        select.select_option(index=(i + 1) % n)
-        return f"dropdown {name!r} → option {(i + 1) % n}"
+        return (f"dropdown {name!r} → option {(i + 1) % n}",
+                lambda: select.select_option(index=(i + 1) % n))
     if "widget-checkbox" in classes:
-        control.locator("input").click()
-        return f"checkbox {name!r}"
-    control.click()
-    return f"toggle {control.inner_text().strip()!r}"
+        box = control.locator("input")
+        return f"checkbox {name!r}", box.click
+    return f"toggle {control.inner_text().strip()!r}", control.click
 
 
 def _panel_latencies(page, notebook: str, rows: list[dict]) -> list[str]:
@@ -337,12 +336,17 @@ def _panel_latencies(page, notebook: str, rows: list[dict]) -> list[str]:
             problems.append(f"panel {i}: shows no figure")
             continue
         before = imgs.last.get_attribute("src")
+        try:
+            what, action = _first_control(page, panel)
+        except Exception as exc:
+            problems.append(f"panel {i}: could not find a control: {exc}")
+            continue
         page.wait_for_timeout(300)
         t0 = page.evaluate("performance.now()")
         try:
-            what = _move_first_control(page, panel)
+            action()
         except Exception as exc:
-            problems.append(f"panel {i}: could not move a control: {exc}")
+            problems.append(f"panel {i}: could not move {what}: {exc}")
             continue
         try:
             t1 = page.wait_for_function(JS_SETTLED, arg=[panel.element_handle(), before],
