@@ -539,7 +539,7 @@ def draw(clutter, neighbourhood, centred, verified):
                            centred=centred, verified=verified)
 
 
-explore = panel(draw,
+explore = panel(draw, tight=False,
                 clutter=dropdown("clutter (points/frame)", list(TH.EXPLORE_CLUTTER),
                                  20.0),
                 neighbourhood=toggle("26-neighbourhood", False),

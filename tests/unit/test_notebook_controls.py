@@ -228,3 +228,15 @@ def test_setup_notebook_and_bad_input():
         assert pd.get_option("display.float_format")(3.14159265) == "3.142"
         assert pd.get_option("display.max_colwidth") >= 200
         assert np.get_printoptions()["precision"] == 3
+
+
+def test_panel_untight_renders_once_and_bad_tight():
+    plt.close("all")
+    calls = []
+    p = panel(_draw_factory(calls), tight=False, sigma=float_slider("σ (″)", 0.5, 10.0, 0.5, 3.0),
+              weighted=toggle("weighted refit", True))
+    p.children[0].children[0].value = 4.0
+    assert calls == [(3.0, True), (4.0, True)]
+    assert plt.get_fignums() == []
+    with pytest.raises(TypeError, match="tight"):
+        panel(_draw_factory([]), tight="no", sigma=float_slider("σ (″)", 0.5, 10.0, 0.5, 3.0))

@@ -14,6 +14,7 @@ test can find every panel and time its redraw.
 from __future__ import annotations
 
 import decimal
+import io
 import math
 import numbers
 import time
@@ -126,7 +127,7 @@ def dropdown(description: str, options: Sequence[Any] | dict[str, Any], value: A
                       layout=_LAYOUT, **kw)
 
 
-def panel(draw: Callable[..., Any], *, columns: int = 2, **controls: Any):
+def panel(draw: Callable[..., Any], *, columns: int = 2, tight: bool = True, **controls: Any):
     """Show ``controls`` above an output area holding ``draw(**values)``'s figure; return the box.
 
     Parameters
@@ -139,6 +140,10 @@ def panel(draw: Callable[..., Any], *, columns: int = 2, **controls: Any):
         raises in the cell; an error on a change is shown in the panel.
     columns : int
         Controls per row.
+    tight : bool
+        Crop the image to the drawn content (Jupyter's default, which draws the figure twice).
+        ``False`` renders the figure once at its own size: about a third faster, for figures
+        whose fixed layout keeps every label inside the canvas.
     **controls
         ipywidgets value widgets, keyed by ``draw``'s parameter names.
 
@@ -154,9 +159,11 @@ def panel(draw: Callable[..., Any], *, columns: int = 2, **controls: Any):
         raise ValueError("panel needs at least one control")
     if isinstance(columns, bool) or not isinstance(columns, int) or columns < 1:
         raise ValueError(f"columns must be a positive int, got {columns!r}")
+    if not isinstance(tight, bool):
+        raise TypeError(f"tight must be a bool, got {type(tight).__name__}")
     w = _widgets()
     import matplotlib.pyplot as plt
-    from IPython.display import display
+    from IPython.display import Image, display
     from matplotlib.figure import Figure
 
     for name, c in controls.items():
@@ -197,7 +204,12 @@ def panel(draw: Callable[..., Any], *, columns: int = 2, **controls: Any):
 
     def show(fig: Any) -> None:
         try:
-            display(fig)
+            if tight:
+                display(fig)
+            else:
+                buf = io.BytesIO()
+                fig.savefig(buf, format="png", dpi=fig.dpi)
+                display(Image(data=buf.getvalue(), format="png"))
         finally:
             plt.close(fig)
 
