@@ -307,7 +307,7 @@ def draw(sky):
     return fig
 
 
-explore = panel(draw, sky=dropdown("sky background (e⁻/px)",
+explore = panel(draw, tight=False, sky=dropdown("sky background (e⁻/px)",
                                    {f"{v:,.0f}": v for v in SKY_LEVELS}, SKY_LEVELS[0]))
 
 # %%
