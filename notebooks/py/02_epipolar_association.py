@@ -22,7 +22,9 @@
 # table of targets and triangulates each. The experiment: four LEO satellites, 2°×2°
 # sensors, nine GEO objects.
 #
-# **Learning objectives.** After this notebook you can
+# ## Learning objectives
+#
+# After this notebook you can
 # - build the fundamental matrix of two cameras from their poses (eqs. 2–5) and check it;
 # - compute point-to-epipolar-line distances (eq. 8) and associate points one-to-one;
 # - explain how the threshold $L$ trades missed against false associations, and derive $L$
