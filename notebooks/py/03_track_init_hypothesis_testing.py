@@ -586,6 +586,7 @@ if not QUICK:  # the full configuration is make repro's: the REPORT must say the
 # %%
 explore = panel(
     E.explore_figure,
+    tight=False,  # laid out once (tight_layout) when the figure is built
     snr=float_slider("SNR (peak / σ)", 0.0, 6.0, 0.1, 2.0),
     log10_p_f=float_slider("log10 P_F", -5.0, -0.5, 0.1, -2.5),
     window=int_slider("window side (px)", 3, 11, 2, 5),

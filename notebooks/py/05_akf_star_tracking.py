@@ -569,9 +569,11 @@ def draw(scenario_name, seed, occlusion_frames, b, lam, gamma, eta):
                                                       eta=eta), variants=SHOWN)
     occ = (f"{occlusion_frames}-frame occlusions" if scenario_name == "cloud"
            else "no clouds")
+    # the filter's setting in the title: a move that changes no estimate still shows
     return A.plot_explore_errors(
         errs, f"{A.SCENARIO_LABELS.get(scenario_name, scenario_name)}, reproduction sequence "
-        f"{seed}, {occ} — one sequence, not the Monte Carlo", gate_px=cfg.gate_px)
+        f"{seed}, {occ} — one sequence, not the Monte Carlo\nconfidence filter: b = {b:.3f}, "
+        f"λ = {lam:.0f}, γ = {gamma:.1f}, η = {eta:.1f}", gate_px=cfg.gate_px)
 
 
 explore = panel(draw,
@@ -581,7 +583,8 @@ explore = panel(draw,
                 b=float_slider("forgetting b", 0.90, 0.995, 0.005, 0.97),
                 lam=float_slider("λ (R inflation)", 1.0, 50.0, 1.0, 10.0),
                 gamma=float_slider("γ (D_M tolerance)", 1.0, 10.0, 0.5, 5.0),
-                eta=float_slider("η (1/σ)", 0.2, 5.0, 0.2, 1.0))
+                eta=float_slider("η (1/σ)", 0.2, 5.0, 0.2, 1.0),
+                enabled_when={"occlusion_frames": ("scenario_name", ["cloud"])})
 
 # %% [markdown]
 # Longer occlusions, counted on the panel's cloud sequences (default filter settings): a track

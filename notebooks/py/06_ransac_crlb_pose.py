@@ -478,17 +478,20 @@ if not QUICK:   # the same configuration as make repro: the same statuses as the
 # The selection's trade-off: how many points a reading drops, and what that does to the
 # attitude error — at the printed noise (1 mm unit) and at the pixel reading (0.01 mm), where
 # the flip ambiguity disappears. Each setting shows a few dozen cached runs (`E.EXPLORE_RUNS`,
-# reduced from 300 so a change redraws in under 0.5 s; the title says so). The tolerance slider affects only the
-# *tolerance* reading.
+# reduced from 300 so a change redraws in under 0.5 s; the title says so). The tolerance slider
+# affects only the *tolerance* reading, so it is greyed out under the others.
 
 # %%
 n_cached = E.warm_explore_cache()   # every setting the controls can reach: a change only draws
+uses_tolerance = [name for name, spec in E.READINGS.items() if spec[0] == "tolerance"]
 explore = panel(
     E.explore_figure,
+    tight=False,  # fixed margins
     reading=dropdown("selection reading", list(E.READINGS), primary),
     noise_unit_mm=dropdown("noise unit", E.NOISE_UNITS, 1.0),
     tolerance_pct=float_slider("tolerance reading: min. decrease (%)", *E.TOLERANCE_PCT),
     show_ml=toggle("show ML (weighted) reference", True),
+    enabled_when={"tolerance_pct": ("reading", uses_tolerance)},
 )
 
 # %%

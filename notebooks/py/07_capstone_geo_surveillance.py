@@ -39,7 +39,6 @@
 # %%
 import time
 
-import matplotlib.pyplot as plt
 import numpy as np
 from eotrack.exercises import check
 from eotrack.experiments import capstone as C
@@ -301,12 +300,7 @@ display(Markdown(f"Sweep of {len(SKY_LEVELS)} sky levels: {time.perf_counter() -
                  f"wall, {time.process_time() - c0:.0f} s CPU."))
 
 
-def draw(sky):
-    fig, axes = plt.subplots(1, 2, figsize=(10, 3.6), dpi=90, layout="constrained")
-    C.plot_sweep(sweep, sky, axes=axes)
-    return fig
-
-
+draw = C.sweep_explorer(sweep)  # built once; a change moves the marker and the title
 explore = panel(draw, tight=False, sky=dropdown("sky background (e⁻/px)",
                                    {f"{v:,.0f}": v for v in SKY_LEVELS}, SKY_LEVELS[0]))
 

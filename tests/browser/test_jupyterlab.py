@@ -7,11 +7,15 @@ For each ``notebooks/0[1-9]*.ipynb`` (a copy in a temporary tree shaped like the
   warnings go to stderr, so a warning fails too — its text is in the failure message);
 - no stray ``<function ...>`` or ``(<Figure size ...>`` text;
 - every panel (``.eotrack-panel``, and ``.widget-interact`` for notebooks not yet converted):
-  move its first control one step (slider: focus the handle, ArrowRight; toggle: click;
-  dropdown: next option) and the figure image must change. The change-to-settled time
-  (image replaced and the kernel idle again) is recorded per panel and printed as a table at
-  the end of the run, also written to ``$EOTRACK_BROWSER_LATENCY``
-  (default ``/tmp/eotrack-browser-latency.txt``). A benchmark, not a timed assertion.
+  move each of its controls ``$EOTRACK_BROWSER_MOVES`` times (default 3; slider: one step
+  right, then back left, ...; dropdown: the next option, as many times as it has options if
+  that is more; toggle: click), and after each move the figure image must change. Each
+  change-to-settled time (image replaced and the kernel idle again, from the user's action) is
+  recorded; the median and the slowest move per control are printed as a table at the end of
+  the run, also written to ``$EOTRACK_BROWSER_LATENCY`` (default
+  ``/tmp/eotrack-browser-latency.txt``). A benchmark, not a timed assertion.
+  ``test_panel_floor`` times a panel whose figure costs almost nothing the same way: the
+  front end's share of every other row.
 
 Notebooks run in one JupyterLab server, ``$EOTRACK_BROWSER_PARALLEL`` at a time (default 2),
 each in its own tab; the panels are timed afterwards, one notebook at a time, with every other
@@ -57,6 +61,7 @@ CHROMIUM_FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic
 PARALLEL = max(1, int(os.environ.get("EOTRACK_BROWSER_PARALLEL", "2")))
 RUN_TIMEOUT_S = float(os.environ.get("EOTRACK_BROWSER_RUN_TIMEOUT", "1200"))
 SETTLE_TIMEOUT_S = 60.0
+MOVES = max(1, int(os.environ.get("EOTRACK_BROWSER_MOVES", "3")))
 PANELS = ".eotrack-panel, .widget-interact"
 STRAY = ("<function ", "(<Figure size")
 TOKEN = "eotrack-browser-test"
@@ -291,36 +296,90 @@ def _output_problems(page) -> list[str]:
     return problems
 
 
-def _first_control(page, panel):
-    """Find the panel's first control; return (description, action) where ``action()`` moves it
-    one step. All look-ups happen here, so the timed part is the user's action alone."""
-    control = panel.locator(".widget-slider, .widget-toggle-button, .widget-checkbox, "
-                            ".widget-dropdown").first
-    if control.count() == 0:
+@dataclass
+class Control:
+    """One control of a panel: ``prepare()`` (untimed look-ups and focus), then ``move(k)``, the
+    user's k-th action (slider: one step right, then back left, ...; dropdown: the next
+    option, cycling; toggle and checkbox: a click), ``moves`` times."""
+    what: str
+    prepare: object
+    move: object
+    moves: int
+    element: object = None
+
+    def disabled(self) -> bool:
+        return bool(self.element.evaluate(
+            "el => el.matches('[disabled]') || !!el.querySelector('[disabled]')"))
+
+
+def _controls(page, panel) -> list[Control]:
+    found = panel.locator(".widget-slider, .widget-toggle-button, .widget-checkbox, "
+                          ".widget-dropdown")
+    if found.count() == 0:
         raise AssertionError("panel has no slider, toggle, checkbox or dropdown")
-    classes = control.get_attribute("class") or ""
-    label = control.locator(".widget-label").first
-    name = label.inner_text().strip() if label.count() else "?"
-    control.scroll_into_view_if_needed()
-    if "widget-slider" in classes:
-        handle = control.locator(".noUi-handle").first
-        now, hi = handle.get_attribute("aria-valuenow"), handle.get_attribute("aria-valuemax")
-        key = "ArrowLeft" if now is not None and now == hi else "ArrowRight"
-        handle.focus()
-        return f"slider {name!r} {key}", lambda: page.keyboard.press(key)
-    if "widget-dropdown" in classes:
-        select = control.locator("select")
-        n = select.locator("option").count()
-        i = select.evaluate("s => s.selectedIndex")
-        return (f"dropdown {name!r} → option {(i + 1) % n}",
-                lambda: select.select_option(index=(i + 1) % n))
-    if "widget-checkbox" in classes:
-        box = control.locator("input")
-        return f"checkbox {name!r}", box.click
-    return f"toggle {control.inner_text().strip()!r}", control.click
+    out = []
+    for j in range(found.count()):
+        control = found.nth(j)
+        classes = control.get_attribute("class") or ""
+        label = control.locator(".widget-label").first
+        name = label.inner_text().strip() if label.count() else "?"
+        if "widget-slider" in classes:
+            handle = control.locator(".noUi-handle").first
+            now, hi = handle.get_attribute("aria-valuenow"), handle.get_attribute("aria-valuemax")
+            keys = ("ArrowLeft", "ArrowRight") if now is not None and now == hi else \
+                ("ArrowRight", "ArrowLeft")
+            out.append(Control(f"slider {name!r} {keys[0]}/{keys[1]}", handle.focus,
+                               lambda k, keys=keys: page.keyboard.press(keys[k % 2]), MOVES,
+                               control))
+        elif "widget-dropdown" in classes:
+            select = control.locator("select")
+            n = select.locator("option").count()
+            i = select.evaluate("s => s.selectedIndex")
+            out.append(Control(f"dropdown {name!r} (all {n} options)", lambda: None,
+                               lambda k, select=select, i=i, n=n:
+                               select.select_option(index=(i + 1 + k) % n), max(MOVES, n),
+                               control))
+        elif "widget-checkbox" in classes:
+            box = control.locator("input")
+            out.append(Control(f"checkbox {name!r}", lambda: None,
+                               lambda k, box=box: box.click(), MOVES, control))
+        else:
+            out.append(Control(f"toggle {control.inner_text().strip()!r}", lambda: None,
+                               lambda k, control=control: control.click(), MOVES, control))
+    return out
+
+
+def _settle(page) -> None:
+    """Wait (untimed) for the kernel to finish what a move started."""
+    page.wait_for_timeout(400)
+    page.wait_for_function(f"({JS_STATUS})().kernel === 'idle'", timeout=SETTLE_TIMEOUT_S * 1000)
+    page.wait_for_timeout(300)
+
+
+def _enable(page, panel, c: Control):
+    """A greyed-out control (``enabled_when``): select other dropdowns' options (untimed) until
+    it is enabled. Returns a function restoring them, or None if no option enables it."""
+    selects = panel.locator(".widget-dropdown select")
+    for j in range(selects.count()):
+        select = selects.nth(j)
+        i0 = select.evaluate("s => s.selectedIndex")
+        for i in range(select.locator("option").count()):
+            if i == i0:
+                continue
+            select.select_option(index=i)
+            _settle(page)
+            if not c.disabled():
+                def restore(select=select, i0=i0):
+                    select.select_option(index=i0)
+                    _settle(page)
+                return restore
+        select.select_option(index=i0)
+        _settle(page)
+    return None
 
 
 def _panel_latencies(page, notebook: str, rows: list[dict]) -> list[str]:
+    """Move every control of every panel; record each change-to-settled time."""
     problems = []
     n = len(page.evaluate(JS_TOP_PANELS, PANELS))
     if n == 0:
@@ -335,30 +394,44 @@ def _panel_latencies(page, notebook: str, rows: list[dict]) -> list[str]:
         if imgs.count() == 0:
             problems.append(f"panel {i}: shows no figure")
             continue
-        before = imgs.last.get_attribute("src")
         try:
-            what, action = _first_control(page, panel)
+            controls = _controls(page, panel)
         except Exception as exc:
             problems.append(f"panel {i}: could not find a control: {exc}")
             continue
-        page.wait_for_timeout(300)
-        t0 = page.evaluate("performance.now()")
-        try:
-            action()
-        except Exception as exc:
-            problems.append(f"panel {i}: could not move {what}: {exc}")
-            continue
-        try:
-            t1 = page.wait_for_function(JS_SETTLED, arg=[panel.element_handle(), before],
-                                        polling="raf", timeout=SETTLE_TIMEOUT_S * 1000)
-            ms = t1.json_value() - t0
-            rows.append({"notebook": notebook, "panel": i, "control": what,
-                                 "settled_s": ms / 1000})
-        except Exception:
-            rows.append({"notebook": notebook, "panel": i, "control": what,
-                                 "settled_s": float("nan")})
-            problems.append(f"panel {i}: the figure did not change within "
-                            f"{SETTLE_TIMEOUT_S:.0f} s after {what}")
+        for c in controls:
+            times = []
+            restore = None
+            if c.disabled():
+                restore = _enable(page, panel, c)
+                if restore is None:
+                    problems.append(f"panel {i}: {c.what} is disabled in every state reached")
+                    continue
+                c.what += " (enabled first)"
+            for k in range(c.moves):
+                before = imgs.last.get_attribute("src")
+                c.prepare()
+                page.wait_for_timeout(300)
+                t0 = page.evaluate("performance.now()")
+                try:
+                    c.move(k)
+                except Exception as exc:
+                    problems.append(f"panel {i}: could not move {c.what}: {exc}")
+                    break
+                try:
+                    t1 = page.wait_for_function(JS_SETTLED, arg=[panel.element_handle(), before],
+                                                polling="raf", timeout=SETTLE_TIMEOUT_S * 1000)
+                    times.append((t1.json_value() - t0) / 1000)
+                except Exception:
+                    times.append(float("nan"))
+                    problems.append(f"panel {i}: the figure did not change within "
+                                    f"{SETTLE_TIMEOUT_S:.0f} s after move {k + 1} of {c.what}")
+                    break
+            if times:
+                rows.append({"notebook": notebook, "panel": i, "control": c.what,
+                             "settled_s": times})
+            if restore is not None:
+                restore()
     return problems
 
 
@@ -381,6 +454,49 @@ def test_notebook_runs_and_panels_redraw(notebook, runs, latency_rows):
     # shut the kernel down: frees its memory for the notebooks still to be checked
     r.page.evaluate("() => window.jupyterapp.shell.currentWidget.sessionContext.shutdown()")
     assert not problems, f"{notebook}:\n  " + "\n  ".join(problems)
+
+
+FLOOR_TWIN = """\
+# %%
+import matplotlib.pyplot as plt
+
+from eotrack.notebook import float_slider, panel, setup_notebook
+
+setup_notebook()
+
+
+def draw(s):
+    fig, ax = plt.subplots(figsize=(7, 3.2))
+    ax.plot([0, 1], [0, s])
+    return fig
+
+
+floor = panel(draw, s=float_slider("s (m)", 0.0, 1.0, 0.1, 0.5))
+"""
+
+
+def test_panel_floor(browser, lab, latency_rows):
+    """The front end's share: a panel whose figure (one line) costs almost nothing to draw."""
+    import jupytext
+
+    d = lab.work / "floor"
+    d.mkdir()
+    nb = jupytext.reads(FLOOR_TWIN, fmt="py:percent")
+    nb.metadata["kernelspec"] = {"name": "python3", "display_name": "Python 3 (ipykernel)",
+                                 "language": "python"}
+    jupytext.write(nb, d / "floor.ipynb")
+    page = _open(browser, lab, "floor/floor.ipynb", "floor")
+    try:
+        page.evaluate("async () => { await window.jupyterapp.commands.execute("
+                      "'notebook:run-all-cells'); }")
+        page.locator(".eotrack-panel img").first.wait_for(timeout=120_000)
+        page.wait_for_function(f"({JS_STATUS})().kernel === 'idle'", timeout=120_000)
+        problems = _output_problems(page)
+        problems += _panel_latencies(page, "(floor: one-line figure)", latency_rows)
+        page.evaluate("() => window.jupyterapp.shell.currentWidget.sessionContext.shutdown()")
+    finally:
+        page.close()
+    assert not problems, "\n".join(problems)
 
 
 PANEL_TWIN = """\

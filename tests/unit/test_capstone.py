@@ -125,3 +125,39 @@ def test_short_night_serial_equals_local_cluster():
     a = serial.budget["value"].to_numpy(float)
     b = dask.budget["value"].to_numpy(float)
     assert np.array_equal(a, b, equal_nan=True)
+
+
+def _fake_sweep():
+    import pandas as pd
+    from eotrack.experiments.capstone import figures as F
+
+    rows = [k for k, _ in F._FRACTIONS] + ["triangulation · RMS position error"] + [
+        f"prediction · {m}: RMS error through the eclipse" for m in C.PREDICTORS] + [
+        "target peak S/N"]
+    values = np.random.default_rng(0).uniform(0.1, 1.0, (len(rows), 3))
+    return pd.DataFrame(values, index=rows, columns=[400.0, 1600.0, 6400.0])
+
+
+def test_sweep_explorer_updates_one_figure():
+    import io
+
+    draw = C.sweep_explorer(_fake_sweep())
+    fig = draw(400.0)
+    pos = [tuple(a.get_position().bounds) for a in fig.axes]
+    fig.savefig(io.BytesIO(), format="png")
+    assert draw(6400) is fig  # the same figure, updated in place
+    assert [tuple(a.get_position().bounds) for a in fig.axes] == pos  # no re-layout
+    marks = [ln for a in fig.axes for ln in a.lines if ln.get_linestyle() == "--"
+             and list(ln.get_xdata()) == [6400.0, 6400.0]]
+    assert len(marks) == 2
+    assert fig._suptitle.get_text().startswith("sky 6400 e⁻/px")
+
+
+def test_sweep_explorer_bad_input():
+    import pandas as pd
+
+    with pytest.raises(ValueError, match="sweep"):
+        C.sweep_explorer(pd.DataFrame())
+    draw = C.sweep_explorer(_fake_sweep())
+    with pytest.raises(ValueError, match="sky must be one of"):
+        draw(1000.0)

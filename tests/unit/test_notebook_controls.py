@@ -240,3 +240,82 @@ def test_panel_untight_renders_once_and_bad_tight():
     assert plt.get_fignums() == []
     with pytest.raises(TypeError, match="tight"):
         panel(_draw_factory([]), tight="no", sigma=float_slider("σ (″)", 0.5, 10.0, 0.5, 3.0))
+
+
+def _png_size(data: bytes) -> tuple[int, int]:
+    assert data[:8] == b"\x89PNG\r\n\x1a\n", "not a PNG"
+    return int.from_bytes(data[16:20], "big"), int.from_bytes(data[20:24], "big")
+
+
+def test_panel_sends_the_figure_as_png_bytes():
+    import ipywidgets
+
+    def draw(n):
+        fig, ax = plt.subplots(figsize=(4, 2), dpi=50)
+        ax.plot(range(n))
+        return fig
+
+    p = panel(draw, tight=False, n=int_slider("n (points)", 2, 9, 1, 3))
+    image = next(c for c in p.children if isinstance(c, ipywidgets.Image))
+    first = image.value
+    assert _png_size(first) == (200, 100)  # tight=False: the figure's own size in pixels
+    p.children[0].children[0].value = 7
+    assert image.value != first and _png_size(image.value) == (200, 100)
+    cropped = panel(draw, n=int_slider("n (points)", 2, 9, 1, 3))  # tight: cropped to content
+    w_px, h_px = _png_size(next(c for c in cropped.children
+                               if isinstance(c, ipywidgets.Image)).value)
+    assert w_px != 200 or h_px != 100
+
+
+def test_panel_keeps_the_last_good_figure_when_a_redraw_fails():
+    import ipywidgets
+
+    plt.close("all")
+
+    def draw(n):
+        if n == 2:
+            raise RuntimeError("boom")
+        fig, ax = plt.subplots(figsize=(2, 2))
+        ax.plot(range(n))
+        return fig
+
+    p = panel(draw, n=int_slider("n", 1, 3))
+    image = next(c for c in p.children if isinstance(c, ipywidgets.Image))
+    good = image.value
+    with pytest.raises(RuntimeError, match="boom"):  # outside a kernel the error propagates
+        p.children[0].children[0].value = 2
+    assert image.value == good
+    p.children[0].children[0].value = 3
+    assert image.value != good
+    assert plt.get_fignums() == []
+
+
+def test_panel_enabled_when_greys_out_a_control():
+    def draw(reading, tol):
+        fig, ax = plt.subplots(figsize=(2, 2))
+        ax.set_title(f"{reading} {tol}")
+        return fig
+
+    p = panel(draw, reading=dropdown("reading", ["pooled", "tolerance"]),
+              tol=float_slider("tolerance (%)", 0.0, 5.0, 0.5, 1.0),
+              enabled_when={"tol": ("reading", ("tolerance",))})
+    reading, tol = p.children[0].children
+    assert tol.disabled
+    reading.value = "tolerance"
+    assert not tol.disabled
+    reading.value = "pooled"
+    assert tol.disabled
+    plt.close("all")
+
+
+@pytest.mark.parametrize("rule", [
+    {"nope": ("reading", ["a"])},
+    {"tol": ("tol", ["a"])},
+    {"tol": ("reading", "tolerance")},
+    {"tol": "reading"},
+])
+def test_panel_enabled_when_bad_input(rule):
+    with pytest.raises(ValueError, match="enabled_when"):
+        panel(lambda reading, tol: plt.figure(), reading=dropdown("reading", ["a", "b"]),
+              tol=float_slider("tolerance (%)", 0.0, 5.0, 0.5, 1.0), enabled_when=rule)
+    plt.close("all")

@@ -5,8 +5,8 @@ Every Explore section of the collection builds its panel with :func:`panel`::
     panel = panel(draw, sigma=float_slider("σ (″)", 0.5, 10, 0.5, 3.0),
                   refit=toggle("weighted refit", True))
 
-``draw(**values)`` returns a matplotlib figure; the panel shows it in an output area and
-redraws on every change (sliders update on release). Assign the result so the cell shows no
+``draw(**values)`` returns a matplotlib figure; the panel shows it as an image and redraws on
+every change (sliders update on release). Assign the result so the cell shows no
 ``Out[]`` repr. The panel's container carries the CSS class ``eotrack-panel`` so the browser
 test can find every panel and time its redraw.
 """
@@ -18,7 +18,7 @@ import io
 import math
 import numbers
 import time
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Collection, Sequence
 from typing import Any
 
 __all__ = ["dropdown", "float_slider", "int_slider", "panel", "readout_format", "toggle"]
@@ -127,31 +127,45 @@ def dropdown(description: str, options: Sequence[Any] | dict[str, Any], value: A
                       layout=_LAYOUT, **kw)
 
 
-def panel(draw: Callable[..., Any], *, columns: int = 2, tight: bool = True, **controls: Any):
-    """Show ``controls`` above an output area holding ``draw(**values)``'s figure; return the box.
+def panel(draw: Callable[..., Any], *, columns: int = 2, tight: bool = True,
+          enabled_when: dict[str, tuple[str, Collection[Any]]] | None = None, **controls: Any):
+    """Show ``controls`` above ``draw(**values)``'s figure; redraw on every change; return the box.
 
     Parameters
     ----------
     draw : callable
         Called with the controls' current values as keyword arguments; returns the matplotlib
         ``Figure`` it made (an ``Axes`` is accepted too; ``None`` means the last new figure).
-        Every figure it opens is closed after display, so redraws do not leak figures. Keep
-        it under 0.5 s: cache what a control does not change. An error on the first draw
-        raises in the cell; an error on a change is shown in the panel.
+        Every figure it opens is closed once rendered, so redraws do not leak figures. Keep
+        it under 0.3 s (the browser adds about 0.1 s): cache what a control does not change.
+        An error on the first draw raises in the cell; an error on a change is shown in the
+        panel, under the last good figure.
     columns : int
         Controls per row.
     tight : bool
-        Crop the image to the drawn content (Jupyter's default, which draws the figure twice).
-        ``False`` renders the figure once at its own size: about a third faster, for figures
-        whose fixed layout keeps every label inside the canvas.
+        Crop the image to the drawn content (as Jupyter's inline backend does, which lays the
+        figure out twice). ``False`` renders the figure once at its own size: faster, for
+        figures whose layout keeps every label inside the canvas.
+    enabled_when : dict, optional
+        ``{control: (other, values)}``: ``control`` is greyed out (disabled) unless the
+        control ``other`` holds one of ``values`` — for a setting that only matters in some
+        states (e.g. a tolerance used by one reading), so a move never silently does nothing.
     **controls
         ipywidgets value widgets, keyed by ``draw``'s parameter names.
 
     Returns
     -------
     ipywidgets.VBox
-        The panel (class ``eotrack-panel``); the last redraw time in seconds is its
-        ``last_draw_s`` attribute.
+        The panel (class ``eotrack-panel``): the rows of controls, an ``Image`` widget holding
+        the PNG, and an ``Output`` that shows an error if a redraw fails. The last redraw time
+        in seconds is its ``last_draw_s`` attribute.
+
+    Notes
+    -----
+    The figure goes to the browser as the PNG bytes of an ``Image`` widget: one binary
+    message per change, lighter for the browser than clearing and re-rendering an output area
+    (the browser test's floor panel shows the browser's share). The image is part of the saved widget state, so a stored notebook (and
+    the book) shows the panel's figure before anything runs.
     """
     if not callable(draw):
         raise TypeError(f"draw must be callable, got {type(draw).__name__}")
@@ -163,17 +177,29 @@ def panel(draw: Callable[..., Any], *, columns: int = 2, tight: bool = True, **c
         raise TypeError(f"tight must be a bool, got {type(tight).__name__}")
     w = _widgets()
     import matplotlib.pyplot as plt
-    from IPython.display import Image, display
+    from IPython.display import display
     from matplotlib.figure import Figure
 
     for name, c in controls.items():
         if not hasattr(c, "value") or not hasattr(c, "observe"):
             raise TypeError(f"control {name!r} is not a value widget: {type(c).__name__}")
-    out = w.Output()
     items = list(controls.values())
-    rows = [w.HBox(items[i:i + columns]) for i in range(0, len(items), columns)]
-    box = w.VBox([*rows, out])
-    box.add_class(PANEL_CLASS)
+    rules = {} if enabled_when is None else enabled_when
+    if not isinstance(rules, dict):
+        raise TypeError(f"enabled_when must be a dict, got {type(rules).__name__}")
+    for name, rule in rules.items():
+        if name not in controls:
+            raise ValueError(f"enabled_when: {name!r} is not one of the controls "
+                             f"{sorted(controls)}")
+        if not (isinstance(rule, tuple) and len(rule) == 2 and rule[0] in controls
+                and rule[0] != name and isinstance(rule[1], Collection)
+                and not isinstance(rule[1], str)):
+            raise ValueError(f"enabled_when[{name!r}] must be (other control, values), "
+                             f"other one of {sorted(set(controls) - {name})}, got {rule!r}")
+
+    def enable(_change: Any = None) -> None:
+        for name, (other, values) in rules.items():
+            controls[name].disabled = controls[other].value not in values
 
     def figure(before: set[int]) -> Any:
         """Call draw; return the figure to show (new figures other than it are closed)."""
@@ -202,31 +228,48 @@ def panel(draw: Callable[..., Any], *, columns: int = 2, tight: bool = True, **c
                 plt.close(f)
         return result
 
-    def show(fig: Any) -> None:
+    def png() -> bytes:
+        """Draw and render the figure to PNG bytes; close it."""
+        fig = figure(set(plt.get_fignums()))
         try:
-            if tight:
-                display(fig)
-            else:
-                buf = io.BytesIO()
-                fig.savefig(buf, format="png", dpi=fig.dpi)
-                display(Image(data=buf.getvalue(), format="png"))
+            buf = io.BytesIO()
+            fig.savefig(buf, format="png", dpi=fig.dpi,
+                        **({"bbox_inches": "tight"} if tight else {}))
+            return buf.getvalue()
         finally:
             plt.close(fig)
 
-    def redraw(_change: Any = None) -> None:
-        # a change: errors are shown in the panel's output (the Output widget reports them)
-        t0 = time.perf_counter()
-        with out:
-            out.clear_output(wait=True)
-            show(figure(set(plt.get_fignums())))
-        box.last_draw_s = time.perf_counter() - t0
-
     # the first draw raises in the cell (so nbval and a reader see the error at once)
     t0 = time.perf_counter()
-    first = figure(set(plt.get_fignums()))
-    with out:
-        show(first)
+    image = w.Image(value=png(), format="png")
+    errors = w.Output()
+    rows = [w.HBox(items[i:i + columns]) for i in range(0, len(items), columns)]
+    box = w.VBox([*rows, image, errors])
+    box.add_class(PANEL_CLASS)
     box.last_draw_s = time.perf_counter() - t0
+    failed = [False]
+
+    def redraw(_change: Any = None) -> None:
+        t0 = time.perf_counter()
+        try:
+            data = png()
+        except Exception:
+            # shown under the last good figure (in a kernel, Output prints the traceback and
+            # swallows the error; elsewhere it propagates)
+            errors.clear_output()
+            failed[0] = True
+            with errors:
+                raise
+            return
+        image.value = data
+        if failed[0]:
+            errors.clear_output()
+            failed[0] = False
+        box.last_draw_s = time.perf_counter() - t0
+
+    enable()
+    for c in {id(controls[other]): controls[other] for other, _ in rules.values()}.values():
+        c.observe(enable, names="value")  # before the redraw: the state is right when it shows
     for c in items:
         c.observe(redraw, names="value")
     display(box)

@@ -18,6 +18,7 @@ from .figures import (
     plot_prediction,
     plot_sweep,
     plot_triangulation,
+    sweep_explorer,
 )
 from .pipeline import (
     PREDICTORS,
@@ -89,6 +90,7 @@ __all__ = [
     "run_night",
     "separate_targets",
     "sidereal_drift_px",
+    "sweep_explorer",
     "target_peak_snr",
     "triangulate_pairs",
     "with_changes",

@@ -2,9 +2,13 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from typing import Any
+
 import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
+from matplotlib.figure import Figure
 from matplotlib.patches import FancyArrowPatch, FancyBboxPatch
 
 from eotrack.geometry import project_directions
@@ -20,7 +24,7 @@ from .pipeline import (
 from .scenario import NightPlan, camera_matrix
 
 __all__ = ["frame_example", "plot_budget", "plot_frame", "plot_night", "plot_pipeline",
-           "plot_prediction", "plot_sweep", "plot_triangulation"]
+           "plot_prediction", "plot_sweep", "plot_triangulation", "sweep_explorer"]
 
 _FRACTIONS = [
     ("extraction · target completeness (sunlit frames)", "extraction\ncompleteness"),
@@ -216,10 +220,14 @@ def plot_prediction(prediction: pd.DataFrame, *, ax: plt.Axes | None = None) -> 
     return ax
 
 
-def plot_sweep(sweep: pd.DataFrame, level: float, *, axes=None):
-    """The chain against the sky level: fractions (left) and errors (right); ``level`` marked."""
-    if axes is None:
-        _, axes = plt.subplots(1, 2, figsize=(10, 3.6), dpi=90, layout="constrained")
+def _sweep_title(sweep: pd.DataFrame, level: float) -> str:
+    snr = float(sweep.loc["target peak S/N", level]) if level in sweep.columns else np.nan
+    return (f"sky {level:.0f} e⁻/px: target peak S/N {snr:.1f} "
+            f"(precomputed full nights at {len(sweep.columns)} sky levels)")
+
+
+def _draw_sweep(sweep: pd.DataFrame, level: float, axes) -> tuple[list, Any]:
+    """Draw the sweep on ``axes``; return the level markers and the title (to update)."""
     a0, a1 = axes
     x = np.asarray(sweep.columns, float)
     for key, lab in _FRACTIONS:
@@ -232,13 +240,65 @@ def plot_sweep(sweep: pd.DataFrame, level: float, *, axes=None):
         a1.plot(x, sweep.loc[f"prediction · {m}: RMS error through the eclipse"], "o--",
                 label=f"{m} prediction (″)")
     a1.set_yscale("log")
+    marks = []
     for a in axes:
         a.set_xscale("log")
         a.set_xlabel("sky background (e⁻/px)")
-        a.axvline(level, color="k", ls="--", lw=1)
+        marks.append(a.axvline(level, color="k", ls="--", lw=1))
         a.legend(fontsize=7)
         a.minorticks_off()
-    snr = float(sweep.loc["target peak S/N", level]) if level in sweep.columns else np.nan
-    a0.figure.suptitle(f"sky {level:.0f} e⁻/px: target peak S/N {snr:.1f} "
-                       f"(precomputed full nights at {len(x)} sky levels)", fontsize=9)
+    title = a0.figure.suptitle(_sweep_title(sweep, level), fontsize=9)
+    return marks, title
+
+
+def plot_sweep(sweep: pd.DataFrame, level: float, *, axes=None):
+    """The chain against the sky level: fractions (left) and errors (right); ``level`` marked."""
+    if axes is None:
+        _, axes = plt.subplots(1, 2, figsize=(10, 3.6), dpi=90, layout="constrained")
+    _draw_sweep(sweep, level, axes)
     return axes
+
+
+def sweep_explorer(sweep: pd.DataFrame) -> Callable[[float], Figure]:
+    """The Explore panel's figure for a sweep: ``draw(sky)`` returns the same ``Figure``.
+
+    The figure is built and laid out (constrained layout) on the first call; later calls only
+    move the level markers and rewrite the title, so a widget redraw costs one render.
+
+    Parameters
+    ----------
+    sweep : pandas.DataFrame
+        A :func:`~eotrack.experiments.capstone.noise_sweep` result.
+
+    Returns
+    -------
+    callable
+        ``draw(sky) -> Figure``; ``sky`` (e⁻/px) must be one of the sweep's sky levels.
+
+    Raises
+    ------
+    ValueError
+        If ``sweep`` has no sky levels, or ``draw`` gets a level the sweep does not hold.
+    """
+    if not isinstance(sweep, pd.DataFrame) or sweep.shape[1] == 0:
+        raise ValueError("sweep must be a noise_sweep DataFrame with at least one sky level")
+    levels = [float(v) for v in sweep.columns]
+    state: dict[str, Any] = {}
+
+    def draw(sky: float) -> Figure:
+        level = float(sky)
+        if level not in levels:
+            raise ValueError(f"sky must be one of the sweep's sky levels {levels}, got {sky}")
+        if not state:
+            fig = Figure(figsize=(10, 3.6), dpi=90, layout="constrained")
+            axes = fig.subplots(1, 2)
+            state["marks"], state["title"] = _draw_sweep(sweep, level, axes)
+            fig.draw_without_rendering()
+            fig.set_layout_engine("none")  # keep the constrained positions: no re-layout
+            state["fig"] = fig
+        for m in state["marks"]:
+            m.set_xdata([level, level])
+        state["title"].set_text(_sweep_title(sweep, level))
+        return state["fig"]
+
+    return draw
