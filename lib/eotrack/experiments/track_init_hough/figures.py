@@ -5,10 +5,12 @@ from __future__ import annotations
 
 import math
 from functools import cache
+from typing import Any
 
 import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
+from matplotlib.figure import Figure
 
 from eotrack.plotting import get_ax
 from eotrack.tracking.initiation.base import Track, validate_frames
@@ -343,46 +345,90 @@ def explore_results(clutter: float, neighbourhood: int = 6, centred: bool = Fals
     return out
 
 
-def plot_explore(clutter: float = 20.0, neighbourhood: int = 6, centred: bool = False,
-                 verified: bool = False):
-    """The Explore panel's figure: recall and false tracks per scene over the panel's scenes
-    against the chance rate (left) and the first scene's tracks (right), for one variant."""
-    res = explore_results(float(clutter), int(neighbourhood), bool(centred), bool(verified))
-    fig, axes = plt.subplots(1, 2, figsize=(10.5, 4.3))
-    x = np.arange(len(res["false"]))
-    ax = axes[0]
-    ax.bar(x - 0.2, res["correct"] / np.maximum(res["eligible"], 1), 0.4, color="tab:blue",
-           label="recall")
+#: The Explore panel's figure, built once and updated in place (see :func:`plot_explore`).
+_EXPLORE: dict[str, Any] = {}
+
+
+def _explore_artists(n_scenes: int) -> dict[str, Any]:
+    """Build the Explore figure once: bars, markers and lines to update (no pyplot state)."""
+    if _EXPLORE.get("n") == n_scenes:
+        return _EXPLORE
+    _EXPLORE.clear()
+    fig = Figure(figsize=(10.5, 4.3))
+    ax, axr = fig.subplots(1, 2)
+    x = np.arange(n_scenes)
+    zeros = np.zeros(n_scenes)
+    art: dict[str, Any] = {"n": n_scenes, "fig": fig, "ax": ax, "axr": axr}
+    art["recall"] = ax.bar(x - 0.2, zeros, 0.4, color="tab:blue", label="recall")
     ax.set_ylim(0, 1.05)
     ax.set_ylabel("recall per scene")
     ax.set_xlabel("scene")
     ax.set_xticks(x)
     ax2 = ax.twinx()
-    ax2.bar(x + 0.2, res["false"], 0.4, color="tab:red", label="false tracks")
-    ax2.plot(x + 0.2, res["chance"], "k_", ms=14, mew=2, label="chance rate (χ² 3-of-4)")
+    art["ax2"] = ax2
+    art["false"] = ax2.bar(x + 0.2, zeros, 0.4, color="tab:red", label="false tracks")
+    art["chance"] = ax2.plot(x + 0.2, zeros, "k_", ms=14, mew=2,
+                             label="chance rate (χ² 3-of-4)")[0]
     ax2.set_ylabel("false tracks per scene")
     h1, l1 = ax.get_legend_handles_labels()
     h2, l2 = ax2.get_legend_handles_labels()
     ax2.legend(h1 + h2, l1 + l2, fontsize=6.5, loc="lower left", framealpha=0.95)
+    art["title"] = ax.set_title("\n", fontsize=8.5)
+    # the first scene: every polyline of a kind is one line, pieces separated by NaN
+    art["detections"] = axr.plot([], [], ".", color="0.7", ms=3)[0]
+    art["truth"] = axr.plot([], [], ":", color="k", lw=1)[0]
+    art["good"] = axr.plot([], [], "-o", ms=3, color="tab:green")[0]
+    art["bad"] = axr.plot([], [], "-x", ms=3, color="tab:red")[0]
+    w = PlantedConfig().width_px
+    axr.set_xlim(0, w)
+    axr.set_ylim(w, 0)
+    axr.set_aspect("equal")
+    axr.set_xlabel("x (px)")
+    axr.set_ylabel("y (px)")
+    art["title_r"] = axr.set_title("", fontsize=9)
+    fig.subplots_adjust(left=0.07, right=0.97, bottom=0.12, top=0.86, wspace=0.45)
+    _EXPLORE.update(art)
+    return _EXPLORE
+
+
+def _joined(polylines: list[np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
+    """Polylines ``(k_i, 2)`` as one x, y pair with NaN between them (one artist draws all)."""
+    if not polylines:
+        return np.empty(0), np.empty(0)
+    gap = np.full((1, 2), np.nan)
+    xy = np.concatenate([p for q in polylines for p in (np.asarray(q, float), gap)])
+    return xy[:, 0], xy[:, 1]
+
+
+def plot_explore(clutter: float = 20.0, neighbourhood: int = 6, centred: bool = False,
+                 verified: bool = False):
+    """The Explore panel's figure: recall and false tracks per scene over the panel's scenes
+    against the chance rate (left) and the first scene's tracks (right), for one variant.
+
+    The figure is built once and its bars and lines updated on every call (the same
+    ``Figure`` is returned), so a widget redraw costs one render.
+    """
+    res = explore_results(float(clutter), int(neighbourhood), bool(centred), bool(verified))
+    n = len(res["false"])
+    art = _explore_artists(n)
+    recall = res["correct"] / np.maximum(res["eligible"], 1)
+    for bar, h in zip(art["recall"].patches, recall, strict=True):
+        bar.set_height(h)
+    for bar, h in zip(art["false"].patches, res["false"], strict=True):
+        bar.set_height(h)
+    art["chance"].set_ydata(res["chance"])
+    top = max(float(res["false"].max(initial=0)), float(res["chance"].max(initial=0)), 1.0)
+    art["ax2"].set_ylim(0, 1.05 * top)
     name = ("ours (verified)" if verified else
             f"paper, {neighbourhood}-nbhd, ρ from the {'centre' if centred else 'corner'}")
-    ax.set_title(f"{name} — {len(x)} scenes only\nrecall "
-                 f"{res['correct'].sum() / max(res['eligible'].sum(), 1):.2f}, "
-                 f"{res['false'].mean():.1f} false/scene (chance {res['chance'].mean():.1f})",
-                 fontsize=8.5)
-    ax = axes[1]
-    ax.plot(*res["detections"].T, ".", color="0.7", ms=3)
-    for i in range(res["truth"].shape[1]):
-        ax.plot(*res["truth"][:, i].T, ":", color="k", lw=1)
-    for pos, good in res["tracks"]:
-        ax.plot(*pos.T, "-o" if good else "-x", ms=3, color="tab:green" if good else "tab:red")
-    w = PlantedConfig().width_px
-    ax.set_xlim(0, w)
-    ax.set_ylim(w, 0)
-    ax.set_aspect("equal")
-    ax.set_xlabel("x (px)")
-    ax.set_ylabel("y (px)")
-    ax.set_title(f"scene 0: {int(res['correct'][0])}/{int(res['eligible'][0])} objects, "
-                 f"{int(res['false'][0])} false (green: correct, red: false)", fontsize=9)
-    fig.subplots_adjust(left=0.07, right=0.97, bottom=0.12, top=0.86, wspace=0.45)
-    return fig
+    art["title"].set_text(
+        f"{name} — {n} scenes only\nrecall "
+        f"{res['correct'].sum() / max(res['eligible'].sum(), 1):.2f}, "
+        f"{res['false'].mean():.1f} false/scene (chance {res['chance'].mean():.1f})")
+    art["detections"].set_data(*res["detections"].T)
+    art["truth"].set_data(*_joined([res["truth"][:, i] for i in range(res["truth"].shape[1])]))
+    art["good"].set_data(*_joined([pos for pos, good in res["tracks"] if good]))
+    art["bad"].set_data(*_joined([pos for pos, good in res["tracks"] if not good]))
+    art["title_r"].set_text(f"scene 0: {int(res['correct'][0])}/{int(res['eligible'][0])} "
+                            f"objects, {int(res['false'][0])} false (green: correct, red: false)")
+    return art["fig"]
