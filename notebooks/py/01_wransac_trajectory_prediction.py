@@ -544,7 +544,7 @@ def draw_budget(U, ransac, readings, mest, refs):
     show = tuple(m for key, on in (("ransac", ransac), ("readings", readings), ("mest", mest),
                                    ("refs", refs)) if on for m in GROUPS[key])
     fig, ax = plt.subplots(figsize=(8, 4.5))
-    fig.subplots_adjust(left=0.09, right=0.99, bottom=0.2, top=0.93)  # room for the labels
+    fig.subplots_adjust(left=0.11, right=0.95, bottom=0.2, top=0.93)  # room for the labels
     W.plot_budget(budget_err, W.BUDGETS, W.BUDGET_METHODS, U, show, ax=ax)
     return fig
 
