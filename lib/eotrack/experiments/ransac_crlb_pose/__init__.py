@@ -23,7 +23,17 @@ import numpy as np
 from eotrack.montecarlo import TrialRunner
 from eotrack.repro import Reproduction, load_claims
 
-from .claims import best_subset_gain, bootstrap_ratio_ci, evaluate, load_protocol
+from .claims import (
+    CONTRADICTED,
+    best_subset_gain,
+    bootstrap_mean_ci,
+    bootstrap_ratio_ci,
+    evaluate,
+    load_protocol,
+    status_fig4,
+    status_fig5,
+    status_fig6,
+)
 from .explore import (
     EXPLORE_RUNS,
     NOISE_UNITS,
@@ -71,6 +81,7 @@ from .trials import (
 )
 
 __all__ = [
+    "CONTRADICTED",
     "EXPLORE_RUNS",
     "NOISE_UNITS",
     "READINGS",
@@ -81,6 +92,7 @@ __all__ = [
     "Scene",
     "Settings",
     "best_subset_gain",
+    "bootstrap_mean_ci",
     "bootstrap_ratio_ci",
     "budget_experiment",
     "draw_scene_3d",
@@ -110,6 +122,9 @@ __all__ = [
     "run_pose_experiment",
     "run_trial",
     "select_and_refit",
+    "status_fig4",
+    "status_fig5",
+    "status_fig6",
     "warm_explore_cache",
     "wilcoxon_less",
     "with_changes",
@@ -123,14 +138,28 @@ TABLE_COUNTS = "Fig. 6 — points per method (80-run set)"
 
 def reproduce(*, quick: bool = False, runner: TrialRunner | None = None,
               scenario: Scenario | None = None,
-              settings: Settings | None = None) -> Reproduction:
+              settings: Settings | None = None, seed: int | None = None) -> Reproduction:
     """Run Figs. 4–6 (300 / 80 runs; quick: 60 / 30) and the beyond-the-paper studies.
 
     The statuses are decided by the primary reading of ``claims.toml``'s ``[protocol]``;
     ``settings.reading`` only chooses what the figures show beside RANSAC.
+
+    ``seed`` None = the committed default run (``settings.seed`` and the studies' fixed seeds);
+    an int = an independent root seed from which every generator of the run is derived
+    (``np.random.SeedSequence(seed).spawn``): the Figs. 4–5 runs, the Fig. 6 runs, the
+    bootstrap intervals, the monotonicity curves and the two beyond-the-paper studies.
     """
     sc = scenario or Scenario()
     st = settings or Settings()
+    if seed is None:
+        seeds = dict(runs=st.seed, counts=st.seed + 1, boot=0, mono=st.seed, eff=7, budget=11)
+    else:
+        if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or seed < 0:
+            raise ValueError(f"seed must be None or a non-negative int, got {seed!r}")
+        kids = np.random.SeedSequence(int(seed)).spawn(6)
+        seeds = {k: int(c.generate_state(1, np.uint32)[0])
+                 for k, c in zip(("runs", "counts", "boot", "mono", "eff", "budget"), kids)}
+        st = replace(st, seed=seeds["runs"])
     claims = load_claims(SLUG)
     proto = load_protocol()
     primary = proto["primary_reading"]
@@ -139,17 +168,19 @@ def reproduce(*, quick: bool = False, runner: TrialRunner | None = None,
     n45 = 60 if quick else st.n_runs
     n6 = 30 if quick else st.n_runs_counts
     t0 = time.perf_counter()
-    df = run_pose_experiment(n45, scenario=sc, settings=st, runner=runner)
+    df = run_pose_experiment(n45, scenario=sc, settings=st, runner=runner, seed=seeds["runs"])
     st6 = replace(st, readings=tuple(dict.fromkeys(("as printed", "exact", primary,
                                                     "sandwich"))))
-    df6 = run_pose_experiment(n6, scenario=sc, settings=st6, runner=runner, seed=st.seed + 1)
+    df6 = run_pose_experiment(n6, scenario=sc, settings=st6, runner=runner,
+                              seed=seeds["counts"])
     t1 = time.perf_counter()
     eff = efficiency_experiment(n_mc=40 if quick else st.n_mc_efficiency, scenario=sc,
-                                runner=runner)
-    bud = budget_experiment(n_runs=6 if quick else st.n_runs_budget, scenario=sc, runner=runner)
+                                runner=runner, seed=seeds["eff"])
+    bud = budget_experiment(n_runs=6 if quick else st.n_runs_budget, scenario=sc, runner=runner,
+                            seed=seeds["budget"])
     t_beyond = time.perf_counter() - t1
-    sizes, scores, sandwich = monotonicity_curves(np.random.default_rng(st.seed), sc)
-    rows = evaluate(claims, df, df6, proto)
+    sizes, scores, sandwich = monotonicity_curves(np.random.default_rng(seeds["mono"]), sc)
+    rows = evaluate(claims, df, df6, proto, boot_seed=seeds["boot"])
     methods = ("ransac", primary, "sandwich", "sandwich (est. σ)", "ml")
     figs = {"fig4_position_error": figure_errors(df, "pos", methods),
             "fig5_attitude_error": figure_errors(df, "att", methods)}
@@ -197,4 +228,4 @@ def reproduce(*, quick: bool = False, runner: TrialRunner | None = None,
             "protocol": proto}
     return Reproduction(slug=SLUG, title=TITLE, claims=rows, tables=tables, figures=figs,
                         text=text, data=data, settings={**asdict(sc), **asdict(st), "quick": quick,
-                                             "runs_fig45": n45, "runs_fig6": n6, **timing})
+                                             "root_seed": seed, "runs_fig45": n45, "runs_fig6": n6, **timing})
