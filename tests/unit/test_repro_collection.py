@@ -16,11 +16,13 @@ def _nb(path, title, code=""):
                                 "nbformat_minor": 5}))
 
 
-def _card(root, slug, statuses, summary=None):
+def _card(root, slug, statuses, summary=None, kinds=None, central=0):
     d = root / "papers_repro" / slug
     d.mkdir(parents=True)
+    kinds = kinds or ["result"] * len(statuses)
     data = {"slug": slug, "title": f"Paper {slug}", "settings": {},
-            "claims": [{"claim": f"{slug}.{i}", "status": s} for i, s in enumerate(statuses)]}
+            "claims": [{"claim": f"{slug}.{i}", "status": s, "kind": k, "central": i == central}
+                       for i, (s, k) in enumerate(zip(statuses, kinds, strict=True))]}
     if summary is not None:
         data["summary"] = summary
     (d / "scorecard.json").write_text(json.dumps(data))
@@ -36,7 +38,8 @@ def repo(tmp_path):
     _nb(nbs / "solutions" / "01_alpha_solutions.ipynb", "Solutions")
     _nb(nbs / "scratch.ipynb", "not numbered")
     _card(tmp_path, "beta", ["reproduced", "not reproduced"], summary="1/2 reproduced")
-    _card(tmp_path, "alpha", ["reproduced", "partial", "partial"])
+    _card(tmp_path, "alpha", ["reproduced", "partial", "partial", "contradicted"],
+          kinds=["check", "result", "result", "result"], central=3)
     _card(tmp_path, "gamma", ["not reproducible"])
     return tmp_path
 
@@ -46,12 +49,46 @@ def test_scorecard_counts_and_order(repo):
     assert list(df["slug"]) == ["alpha", "beta", "gamma"]  # by notebook, then unmatched papers
     assert list(df["notebook"]) == ["01_alpha_topic", "02_beta_topic", ""]
     alpha = df.iloc[0]
-    assert (alpha["claims"], alpha["reproduced"], alpha["partial"]) == (3, 1, 2)
-    assert alpha["summary"] == "1 reproduced, 2 partial"  # computed when the card has none
+    # the check counts apart: results 0/3 reproduced, checks 1/1 pass
+    assert (alpha["claims"], alpha["results"], alpha["reproduced"], alpha["partial"],
+            alpha["contradicted"], alpha["checks"], alpha["checks pass"]) == (4, 3, 0, 2, 1, 1, 1)
+    assert alpha["summary"] == ("results: 0/3 reproduced, 2 partial, 1 contradicted; "
+                                "checks: 1/1 pass")  # computed when the card has none
+    assert alpha["central"] == "alpha.3: **contradicted**"
     assert df.iloc[1]["summary"] == "1/2 reproduced"
     assert df.iloc[2]["not reproducible"] == 1
-    assert int(df[["reproduced", "partial", "not reproduced", "not reproducible"]].sum().sum()) \
-        == int(df["claims"].sum())
+    statuses = ["reproduced", "partial", "not reproduced", "contradicted", "not reproducible"]
+    assert int(df[statuses].sum().sum()) == int(df["results"].sum())
+    assert int(df["results"].sum() + df["checks"].sum()) == int(df["claims"].sum())
+
+
+def test_central_verdict(repo):
+    from eotrack.repro import central_verdict
+
+    assert central_verdict("alpha", repo / "papers_repro") == "alpha.3: **contradicted**"
+    with pytest.raises(ValueError, match="no scorecard for 'delta'"):
+        central_verdict("delta", repo / "papers_repro")
+    with pytest.raises(ValueError, match="slug must be"):
+        central_verdict("../x", repo / "papers_repro")
+
+
+def test_lesson_navigation(repo):
+    from eotrack.notebook import lesson_footer, lesson_header, lesson_navigation
+
+    nbs = repo / "notebooks"
+    assert lesson_navigation("01", nbs) == ("← [00 · Start here](00_index.ipynb) · "
+                                            "[02 · Beta](02_beta_topic.ipynb) →")
+    assert lesson_navigation(2, nbs) == ("← [01 · Alpha](01_alpha_topic.ipynb) · "
+                                         "[index](00_index.ipynb)")
+    assert lesson_footer("00", nbs, show=False) == "[01 · Alpha](01_alpha_topic.ipynb) →"
+    head = lesson_header("02", nbs, show=False)
+    assert head.startswith("← [01 · Alpha]")
+    with pytest.raises(ValueError, match="no notebook 05_"):
+        lesson_navigation("05", nbs)
+    with pytest.raises(ValueError, match="two-digit notebook number"):
+        lesson_navigation("1a", nbs)
+    with pytest.raises(TypeError, match="notebook number"):
+        lesson_navigation(1.0, nbs)
 
 
 def test_scorecard_of_the_repository():

@@ -14,9 +14,10 @@ from pathlib import Path
 import pandas as pd
 
 from .claims import papers_repro_dir
-from .scorecard import Status
+from .scorecard import Status, status_summary
 
-__all__ = ["collection_notebooks", "collection_scorecard", "notebook_for_slug"]
+__all__ = ["central_verdict", "collection_notebooks", "collection_scorecard",
+           "notebook_for_slug"]
 
 _STEM = re.compile(r"^(\d\d)_[A-Za-z0-9_]+$")
 _STATUSES = [str(s) for s in Status]
@@ -154,9 +155,13 @@ def collection_scorecard(papers_repro: str | os.PathLike[str] | None = None, *,
     -------
     pandas.DataFrame
         One row per paper, ordered by notebook number: ``notebook`` (stem, ``""`` if none),
-        ``slug``, ``paper`` (the citation), ``claims`` (count), one count column per status
-        (``reproduced``, ``partial``, ``not reproduced``, ``not reproducible``) and
-        ``summary``.
+        ``slug``, ``paper`` (the citation), ``claims`` (count), ``results`` (how many claims are
+        the paper's results), one count column per status **over the results only**
+        (``reproduced``, ``partial``, ``not reproduced``, ``contradicted``,
+        ``not reproducible``), ``checks`` and ``checks pass`` (checks of a formula, an input or
+        our construction, counted apart), ``fragile`` (claims whose status changed on some seed
+        of the last stability run), ``central`` (the verdict line on the central claims) and
+        ``summary``. A row without ``kind`` counts as a result.
 
     Raises
     ------
@@ -178,13 +183,56 @@ def collection_scorecard(papers_repro: str | os.PathLike[str] | None = None, *,
     rows = []
     for path in paths:
         data = _load_card(path)
-        counts = {s: sum(1 for r in data["claims"] if r["status"] == s) for s in _STATUSES}
+        res = [r for r in data["claims"] if r.get("kind", "result") != "check"]
+        chk = [r for r in data["claims"] if r.get("kind", "result") == "check"]
+        counts = {s: sum(1 for r in res if r["status"] == s) for s in _STATUSES}
         stem = (notebook_for_slug(data["slug"], nb_dir) if nb_dir is not None else None) or ""
-        summary = data.get("summary") or ", ".join(f"{n} {s}" for s, n in counts.items() if n)
+        summary = data.get("summary") or status_summary(data["claims"])
         rows.append({"notebook": stem, "slug": data["slug"], "paper": data["title"],
-                     "claims": len(data["claims"]), **counts, "summary": summary})
-    df = pd.DataFrame(rows, columns=["notebook", "slug", "paper", "claims", *_STATUSES,
+                     "claims": len(data["claims"]), "results": len(res), **counts,
+                     "checks": len(chk),
+                     "checks pass": sum(1 for r in chk if r["status"] == Status.REPRODUCED),
+                     "fragile": sum(1 for r in data["claims"] if r.get("fragile")),
+                     "central": _central(data), "summary": summary})
+    df = pd.DataFrame(rows, columns=["notebook", "slug", "paper", "claims", "results",
+                                     *_STATUSES, "checks", "checks pass", "fragile", "central",
                                      "summary"])
     # papers with a notebook first, in reading order; the rest by slug
     order = df["notebook"].where(df["notebook"] != "", "~" + df["slug"])
     return df.iloc[order.argsort(kind="stable")].reset_index(drop=True)
+
+
+def _central(data: dict) -> str:
+    if data.get("central"):
+        return str(data["central"])
+    parts = [f"{r['claim']}: **{r['status']}**" for r in data["claims"] if r.get("central")]
+    return "; ".join(parts) if parts else "no central claim marked"
+
+
+def central_verdict(slug: str, papers_repro: str | os.PathLike[str] | None = None) -> str:
+    """The computed one-line verdict on ``slug``'s central claim(s), from its scorecard.json.
+
+    Parameters
+    ----------
+    slug : str
+        A paper slug such as ``"wransac"``.
+    papers_repro : path, optional
+        The ``papers_repro`` folder; default: found by :func:`eotrack.repro.papers_repro_dir`.
+
+    Returns
+    -------
+    str
+        e.g. ``"central claim wransac.table1: **contradicted** (5/5 seeds)"`` (Markdown).
+
+    Raises
+    ------
+    ValueError
+        If the slug is malformed or has no scorecard (run ``make repro``).
+    """
+    if not isinstance(slug, str) or not re.fullmatch(r"[a-z][a-z0-9_]*", slug):
+        raise ValueError(f"slug must be a lower-case identifier such as 'wransac', got {slug!r}")
+    base = papers_repro_dir() if papers_repro is None else _dir(papers_repro, "papers_repro")
+    path = base / slug / "scorecard.json"
+    if not path.is_file():
+        raise ValueError(f"no scorecard for {slug!r} at {str(path)!r}; run `make repro`")
+    return _central(_load_card(path))

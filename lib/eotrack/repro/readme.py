@@ -37,9 +37,12 @@ def notebook_table(root: Path) -> str:
         if nb is None:
             continue
         stem, title = nb
+        central = data.get("central") or "no central claim marked"
         rows.append((stem, f"| {stem[:2]} | [{title}](notebooks/{stem}.ipynb) | {data['title']} "
+                           f"| {central} "
                            f"| [{slug}](papers_repro/{slug}/REPORT.md): {data['summary']} |"))
-    head = "| # | notebook | paper | scorecard (last `make repro`) |\n|---|---|---|---|"
+    head = ("| # | notebook | paper | verdict on the central claim | scorecard (last "
+            "`make repro`) |\n|---|---|---|---|---|")
     return "\n".join([head, *[r for _, r in sorted(rows)]])
 
 

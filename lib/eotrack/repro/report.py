@@ -10,9 +10,11 @@ from typing import Any
 
 import pandas as pd
 
-from .scorecard import ClaimResult, Status, scorecard
+from .claims import Claim, load_claims
+from .scorecard import ClaimResult, scorecard, status_summary
+from .stability import Stability, read_stability
 
-__all__ = ["Reproduction", "write_report"]
+__all__ = ["Reproduction", "central_line", "write_report"]
 
 
 @dataclass
@@ -55,11 +57,34 @@ class Reproduction:
         return scorecard(self.claims)
 
     def status_summary(self) -> str:
-        """E.g. ``"9/11 reproduced, 2 partial"``."""
-        counts = {s: sum(r.status is s for r in self.claims) for s in Status}
-        parts = [f"{counts[Status.REPRODUCED]}/{len(self.claims)} reproduced"]
-        parts += [f"{n} {s}" for s, n in counts.items() if n and s is not Status.REPRODUCED]
-        return ", ".join(parts)
+        """E.g. ``"results: 1/6 reproduced, 2 contradicted, 3 partial; checks: 3/3 pass"``."""
+        return status_summary(self.claims)
+
+    def central_line(self, stability: Stability | None = None) -> str:
+        """One line: the verdict on the paper's central claim(s)."""
+        return central_line([r.to_dict() for r in self.claims], stability)
+
+
+def central_line(rows: list[dict[str, Any]], stability: Stability | None = None) -> str:
+    """``"central claim wransac.table1: contradicted (5/5 seeds)"`` from scorecard rows.
+
+    Rows without a central claim give ``"no central claim marked"``.
+    """
+    parts = []
+    for r in rows:
+        if not r.get("central"):
+            continue
+        st = str(r["status"])
+        stab = ""
+        if stability is not None and not stability.quick:
+            share = stability.share(r["claim"], st)
+            if share is not None:
+                n = round(share * stability.k)
+                stab = f" ({n}/{stability.k} seeds{', fragile' if n < stability.k else ''})"
+        parts.append(f"{r['claim']}: **{st}**{stab}")
+    if not parts:
+        return "no central claim marked"
+    return ("central claim " if len(parts) == 1 else "central claims ") + "; ".join(parts)
 
 
 def _md_table(df: pd.DataFrame) -> str:
@@ -77,8 +102,37 @@ def _md_table(df: pd.DataFrame) -> str:
     return "\n".join([head, sep, *body])
 
 
-def write_report(rep: Reproduction, out_dir: str | os.PathLike[str], *, dpi: int = 110) -> Path:
+def _scorecard_table(rep: Reproduction, stability: Stability | None) -> pd.DataFrame:
+    rows = []
+    for r in rep.claims:
+        row = {"claim": r.claim, "kind": r.kind + (" (central)" if r.central else ""),
+               "status": r.verdict}
+        if stability is not None:
+            row["stability"] = stability.cell(r.claim, r.status)
+        row.update(paper=r.paper, ours=r.ours, criterion=r.criterion, note=r.note)
+        if any(x.variant for x in rep.claims):
+            row["our variant"] = r.variant
+        rows.append(row)
+    return pd.DataFrame(rows)
+
+
+def _history_lines(claims: dict[str, Claim]) -> list[str]:
+    out = []
+    for c in claims.values():
+        for h in c.history:
+            seen = "**after results were seen**" if h.after_results else "before results were seen"
+            out.append(f"- `{c.id}`, changed {h.date} ({seen}): {h.reason} Earlier criterion: "
+                       f"“{h.criterion}”")
+    return out
+
+
+def write_report(rep: Reproduction, out_dir: str | os.PathLike[str], *, dpi: int = 110,
+                 claims: dict[str, Claim] | None = None) -> Path:
     """Write ``REPORT.md``, ``scorecard.json`` and ``figures/*.png`` into ``out_dir``.
+
+    The stability column comes from ``out_dir/stability.json`` (written by ``python -m
+    eotrack.repro --seeds K``) when it exists; the criterion history from ``claims`` (default:
+    the paper's claims.toml, when the slug has one).
 
     Returns
     -------
@@ -90,14 +144,34 @@ def write_report(rep: Reproduction, out_dir: str | os.PathLike[str], *, dpi: int
     fig_dir.mkdir(parents=True, exist_ok=True)
     for old in fig_dir.glob("*.png"):
         old.unlink()
-    lines = [f"# Reproduction report: `{rep.slug}`", "", rep.title, "",
+    stability = read_stability(out)
+    if claims is None:
+        try:
+            claims = load_claims(rep.slug)
+        except (ValueError, FileNotFoundError):
+            claims = {}
+    lines = [f"# Reproduction report: {rep.title}", "", f"Paper slug `{rep.slug}`.", "",
+             f"**Verdict:** {rep.central_line(stability)}.", "",
              f"**Status:** {rep.status_summary()}", "",
+             "Results are the paper's findings; checks verify a formula, an input or our own "
+             "construction and are not counted as reproductions.", "",
              "Written by `python -m eotrack.repro` (`make repro`); do not edit by hand.", ""]
     if rep.settings:
         lines += ["## Settings", ""]
         lines += [f"- `{k}` = {v}" for k, v in rep.settings.items()]
         lines.append("")
-    lines += ["## Scorecard", "", _md_table(rep.scorecard), ""]
+    lines += ["## Scorecard", ""]
+    if stability is not None:
+        run = "quick counts — not the committed run's" if stability.quick else "full counts"
+        lines += [f"Stability: share of {stability.k} independent root seeds "
+                  f"({', '.join(map(str, stability.seeds))}; {run}; run {stability.date}) that "
+                  "give the committed status; **fragile** where any seed differs.", ""]
+    else:
+        lines += ["Stability: not run (`make repro-stability`).", ""]
+    lines += [_md_table(_scorecard_table(rep, stability)), ""]
+    hist = _history_lines(claims)
+    if hist:
+        lines += ["## Criterion history", "", *hist, ""]
     if rep.text:
         lines += [rep.text.strip(), ""]
     for name, df in rep.tables.items():
@@ -109,8 +183,18 @@ def write_report(rep: Reproduction, out_dir: str | os.PathLike[str], *, dpi: int
             lines += [f"![{stem}](figures/{stem}.png)", ""]
     report = out / "REPORT.md"
     report.write_text("\n".join(lines))
-    (out / "scorecard.json").write_text(
-        json.dumps({"slug": rep.slug, "title": rep.title, "summary": rep.status_summary(),
-                    "settings": {k: str(v) for k, v in rep.settings.items()},
-                    "claims": [r.to_dict() for r in rep.claims]}, indent=2) + "\n")
+    rows = []
+    for r in rep.claims:
+        d = r.to_dict()
+        if stability is not None:
+            d["stability"] = stability.share(r.claim, r.status)
+            d["fragile"] = stability.fragile(r.claim, r.status)
+        rows.append(d)
+    card = {"slug": rep.slug, "title": rep.title, "summary": rep.status_summary(),
+            "central": rep.central_line(stability),
+            "stability": None if stability is None else
+            {"date": stability.date, "k": stability.k, "seeds": list(stability.seeds),
+             "quick": stability.quick},
+            "settings": {k: str(v) for k, v in rep.settings.items()}, "claims": rows}
+    (out / "scorecard.json").write_text(json.dumps(card, indent=2) + "\n")
     return report
