@@ -4,7 +4,16 @@ PY      := .venv/bin/python
 STAMP   := .venv/.installed-stamp
 NB_SAN  := tests/notebooks/sanitize.cfg
 
-.PHONY: setup repro repro-quick test lint unit papers notebooks browser lab bench execute clean book
+.PHONY: setup repro repro-quick repro-stability test check lint unit papers figures notebooks \
+	browser ci lab bench mutation execute clean book
+
+# pytest-xdist workers for the test targets (one per core of the 2-core reference machine);
+# `make test JOBS=1` runs serially. Notebooks are distributed whole (--dist loadfile): nbval runs
+# a notebook's cells in order in one kernel.
+JOBS    ?= 2
+XDIST   := $(if $(filter-out 1,$(JOBS)),-n $(JOBS) --dist loadfile,)
+NBVAL   := --nbval-lax --nbval-sanitize-with $(NB_SAN) --nbval-cell-timeout=600
+K       ?= 5
 
 # The stamp holds a hash of what the install depends on (environment.txt, and pyproject.toml less
 # its [tool.*] sections other than [tool.setuptools*]): a newer file with the same content (a
@@ -30,25 +39,42 @@ repro: setup
 repro-quick: setup
 	$(PY) -m eotrack.repro --quick --out /tmp/eotrack-repro-quick
 
-## lint, unit tests, paper tests, notebooks (nbval), browser test
-test: setup lint unit papers notebooks browser
+## every paper at its full counts on K independent root seeds (default 5) as well: writes
+## papers_repro/<slug>/stability.json; the REPORTs show each claim's stability (fragile if any differs)
+repro-stability: setup
+	$(PY) -m eotrack.repro --seeds $(K) --no-progress
+
+## the README's test command: lint, then unit + exercise + figure-lint + paper tests and every
+## notebook (nbval) in one pytest run over $(JOBS) workers. The browser tests (JupyterLab in
+## Chromium) are `make browser`; CI (.ci/run) runs both.
+test: setup lint check
+
+check: setup
+	$(PY) -m pytest -q -p no:randomly $(XDIST) tests/unit tests/exercises tests/figures \
+		tests/papers notebooks $(NBVAL)
+
+## CI's checks on this machine: make test, the browser tests, then nbval with AVX-512 off
+ci: setup
+	bash .ci/run
 
 lint: setup
 	$(PY) -m ruff check lib tests benchmarks notebooks/py .ci
 	$(PY) .ci/check_twins.py
 
 unit: setup
-	$(PY) -m pytest -q tests/unit tests/exercises
+	$(PY) -m pytest -q $(XDIST) tests/unit tests/exercises
+
+figures: setup
+	$(PY) -m pytest -q $(XDIST) tests/figures
 
 papers: setup
-	$(PY) -m pytest -q tests/papers
+	$(PY) -m pytest -q $(XDIST) tests/papers
 
 ## nbval in lax mode: every cell runs and must not raise; only cells marked `# NBVAL_CHECK_OUTPUT`
 ## have their text compared (a notebook with no marked cell still runs). notebooks/ includes
 ## notebooks/solutions/; .ipynb_checkpoints/ is skipped (pytest ignores dot-directories).
 notebooks: setup
-	$(PY) -m pytest -q -p no:randomly --nbval-lax notebooks --nbval-sanitize-with $(NB_SAN) \
-		--nbval-cell-timeout=600
+	$(PY) -m pytest -q -p no:randomly $(XDIST) notebooks $(NBVAL)
 
 browser: setup
 	$(PY) -m pytest -q -rs tests/browser
@@ -69,6 +95,11 @@ book: setup
 ## side-by-side timings against the peer libraries
 bench: setup
 	@for f in benchmarks/bench_*.py; do echo "== $$f"; $(PY) $$f || exit 1; done
+
+## hand mutations of the core kernels (tests/mutations/): each must make a unit test fail;
+## prints the mutation score (not part of `make test`)
+mutation: setup
+	$(PY) tests/mutations/run.py
 
 ## re-execute the notebooks from their .py twins and store the outputs in the .ipynb files
 execute: setup
