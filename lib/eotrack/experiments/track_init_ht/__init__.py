@@ -25,9 +25,17 @@ from .claims import (
     evaluate_experiment,
     evaluate_fig1,
     evaluate_fig2,
+    experiment_measurement,
     experiment_table,
+    fig1_measurement,
     fig1_readings,
+    fig2_measurement,
     fig2_table,
+    run_share,
+    snr_for_recovery,
+    status_experiment,
+    status_fig1,
+    status_fig2,
 )
 from .figures import (
     explore_figure,
@@ -51,6 +59,7 @@ from .scenario import (
     HIGH_PDA,
     INITIATOR_P_F,
     LOW_PFA,
+    RUN_CONFIDENCE,
     SLUG,
     SWEEP_SNR,
     TITLE,
@@ -59,7 +68,7 @@ from .scenario import (
     paper_settings,
     trial_counts,
 )
-from .sequences import match_tracks, run_sequence, sequence_experiment, snr_sweep
+from .sequences import match_tracks, run_sequence, sequence_experiment, snr_sweep, sweep_example
 from .trials import (
     Fig1Result,
     Fig2Result,
@@ -76,6 +85,8 @@ __all__ = [
     "HIGH_PDA",
     "INITIATOR_P_F",
     "LOW_PFA",
+    "RUN_CONFIDENCE",
+    "SEEDS",
     "SLUG",
     "SWEEP_SNR",
     "TITLE",
@@ -86,10 +97,13 @@ __all__ = [
     "evaluate_experiment",
     "evaluate_fig1",
     "evaluate_fig2",
+    "experiment_measurement",
     "experiment_table",
     "explore_figure",
+    "fig1_measurement",
     "fig1_monte_carlo",
     "fig1_readings",
+    "fig2_measurement",
     "fig2_monte_carlo",
     "fig2_table",
     "initiator_monte_carlo",
@@ -108,39 +122,83 @@ __all__ = [
     "plot_snr_sweep",
     "reproduce",
     "run_sequence",
+    "run_share",
+    "seeds",
     "sequence_experiment",
+    "snr_for_recovery",
     "snr_sweep",
+    "status_experiment",
+    "status_fig1",
+    "status_fig2",
+    "sweep_example",
     "trial_counts",
 ]
 
+#: The committed default run's seeds (``reproduce(seed=None)``), one per part of the run.
+SEEDS = {"fig1": 1, "fig2": 2, "initiator": 5, "sequences": 3}
 
-def reproduce(*, quick: bool = False, runner: TrialRunner | None = None) -> Reproduction:
+
+def seeds(seed: int | None = None) -> dict[str, int | np.random.SeedSequence]:
+    """The seed of every part of a run: :data:`SEEDS` for ``None``, else children of ``seed``.
+
+    With an int, ``numpy.random.SeedSequence(seed).spawn(4)`` gives independent seeds for Fig. 1,
+    Fig. 2, the initiator check and the sequences (the sweep uses the sequences' seed: common
+    random numbers); every generator of the run derives from them.
+
+    Raises
+    ------
+    TypeError
+        ``seed`` is not ``None`` or an int.
+    ValueError
+        ``seed`` is negative.
+    """
+    if seed is None:
+        return dict(SEEDS)
+    if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)):
+        raise TypeError(f"seed must be None or a non-negative int, got {type(seed).__name__}")
+    if seed < 0:
+        raise ValueError(f"seed must be non-negative, got {seed}")
+    kids = np.random.SeedSequence(int(seed)).spawn(len(SEEDS))
+    return dict(zip(SEEDS, kids))
+
+
+def reproduce(*, quick: bool = False, runner: TrialRunner | None = None,
+              seed: int | None = None) -> Reproduction:
     """Run Figs. 1–2 and the sequence experiment; score the three claims.
 
-    ``quick`` selects :func:`trial_counts` (the test suite's counts); every function is called
-    with its default seed, so a notebook that makes the same calls gets the same numbers.
+    ``quick`` selects :func:`trial_counts` (the test suite's counts). ``seed=None`` is the
+    committed default run (every function with its default seed, so a notebook that makes the
+    same calls gets the same numbers); an int is an independent root seed from which every
+    generator is derived (:func:`seeds`) — ``python -m eotrack.repro track_init_ht --seeds 5``.
     """
     ps = paper_settings()
     n = trial_counts(quick)
+    sd = seeds(seed)
     th = ps["min_hits_T_h"]
     # ---------------------------------------------------------------- Figs. 1-2
     f1 = fig1_monte_carlo(snr=ps["fig1_snr"], p_f=ps["fig1_p_f"], window=ps["fig1_window"],
                           target_pixels=ps["fig1_target_pixels"], n_noise=n.fig1_windows,
-                          n_target=n.fig1_windows, runner=runner)
+                          n_target=n.fig1_windows, seed=sd["fig1"], runner=runner)
     f2 = fig2_monte_carlo(snr=ps["fig2_snr"], gate=ps["fig2_gate"], frames=ps["frames_T"],
-                          p_f=FIG2_P_F, n=n.fig2_tracks, runner=runner)
+                          p_f=FIG2_P_F, n=n.fig2_tracks, seed=sd["fig2"], runner=runner)
     ini_mc = initiator_monte_carlo(snr=ps["fig2_snr"], p_f=INITIATOR_P_F, gate=ps["fig2_gate"],
                                    frames=ps["frames_T"], min_hits=th,
-                                   n=n.initiator_sequences, runner=runner)
+                                   n=n.initiator_sequences, seed=sd["initiator"], runner=runner)
     # ---------------------------------------------------------------- Figs. 3-7
     st = SequenceSettings.from_paper(ps)
-    ex = sequence_experiment(st, n.sequences, runner=runner)
+    ex = sequence_experiment(st, n.sequences, seed=sd["sequences"], runner=runner)
     sweep = snr_sweep(st, [ps["curved_snr"] + d for d in SWEEP_SNR], n.sweep_runs,
-                      runner=runner)
+                      seed=sd["sequences"], runner=runner,
+                      paper_runs=ex["runs"] if n.sweep_runs == n.sequences else None)
     claims = [evaluate_fig1(f1), evaluate_fig2(f2, min_hits=th), evaluate_experiment(ex, sweep, st)]
     # ---------------------------------------------------------------- report
     demo = run_sequence(np.random.default_rng(DEMO_SEED), st, keep=True)
     frame = st.curved_first + 10
+    snr50 = snr_for_recovery(sweep)
+    fig7_snrs = [st.curved_snr] + ([snr50] if np.isfinite(snr50) and snr50 != st.curved_snr
+                                   else [])
+    fig7_runs = {snr: sweep_example(st, snr, n.sequences, seed=sd["sequences"])
+                 for snr in fig7_snrs}
     figs = {
         "fig1_area_probabilities": plot_fig1(f1).figure,
         "fig2_sequence_track_detection": plot_fig2(f2).figure,
@@ -149,8 +207,7 @@ def reproduce(*, quick: bool = False, runner: TrialRunner | None = None) -> Repr
         "fig5_spatial_clustering": plot_fig5(demo, frame, window=st.window, s=st.s).figure,
         "fig6_temporal_test_tracks": plot_fig6(demo, gate=st.gate, frames=st.frames,
                                                min_hits=st.min_hits).figure,
-        "fig7_curved_target_tracks": plot_fig7({f"curved target SNR {st.curved_snr:g} (paper)":
-                                                demo}),
+        "fig7_curved_target_tracks": plot_fig7(fig7_runs, sweep),
         "fig7_curved_target_vs_snr": plot_snr_sweep(sweep).figure,
         "sequence_measured_vs_formulas": plot_measured_vs_formula(ex).figure,
         "beyond_initiator_vs_eq12_13": plot_initiator_vs_formulas(ini_mc).figure,

@@ -17,14 +17,14 @@ import pandas as pd
 
 from eotrack.imaging.dim_targets import DimSequence, simulate_dim_sequence
 from eotrack.imaging.neighbourhood import candidate_frames, neighbourhood_count
-from eotrack.montecarlo import TrialRunner, run_trials
+from eotrack.montecarlo import TrialRunner, run_trials, trial_generators
 from eotrack.tracking import hypothesis as hyp
 from eotrack.tracking.initiation.base import Track
 from eotrack.tracking.initiation.temporal import TemporalContinuityInitiator
 
 from .scenario import SequenceSettings
 
-__all__ = ["match_tracks", "run_sequence", "sequence_experiment", "snr_sweep"]
+__all__ = ["match_tracks", "run_sequence", "sequence_experiment", "snr_sweep", "sweep_example"]
 
 
 def match_tracks(tracks: list[Track], frames: list[tuple[float, np.ndarray]],
@@ -173,7 +173,8 @@ def _sequence_trial(rng: np.random.Generator, st: SequenceSettings) -> dict[str,
     return run_sequence(rng, st, keep=False)
 
 
-def sequence_experiment(st: SequenceSettings, n_runs: int, *, seed: int = 3,
+def sequence_experiment(st: SequenceSettings, n_runs: int, *,
+                        seed: int | np.random.SeedSequence = 3,
                         runner: TrialRunner | None = None) -> dict[str, Any]:
     """Run ``n_runs`` sequences and pool the measurements against eqs. (4), (7), (9), (12), (13).
 
@@ -245,23 +246,57 @@ def sequence_experiment(st: SequenceSettings, n_runs: int, *, seed: int = 3,
     }
 
 
-def snr_sweep(st: SequenceSettings, snrs: list[float], n_runs: int, *, seed: int = 4,
-              runner: TrialRunner | None = None) -> pd.DataFrame:
-    """Recovery of the curved target versus its SNR (curved target alone, 128 × 128 crop)."""
+def snr_sweep(st: SequenceSettings, snrs: list[float], n_runs: int, *,
+              seed: int | np.random.SeedSequence = 3, runner: TrialRunner | None = None,
+              paper_runs: list[dict[str, Any]] | None = None) -> pd.DataFrame:
+    """Recovery of the curved target versus its SNR, in the experiment's own scene.
+
+    Every SNR runs the same ``n_runs`` sequences as :func:`sequence_experiment` with the same
+    ``seed`` (common random numbers: the same noise, clutter and jitter; only the curved
+    target's amplitude changes), so the row at the paper's SNR *is* the experiment. Pass that
+    experiment's ``runs`` as ``paper_runs`` to reuse them instead of simulating them again.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per SNR: ``P_DA measured``, ``recovered runs`` (coverage ≥ 0.5),
+        ``recovered share`` with its 95 % Clopper–Pearson interval (``CP low``, ``CP high``),
+        ``mean coverage``, ``false tracks / run``, ``runs``.
+    """
+    from .claims import CURVED_COVERAGE, run_share
+
+    if not isinstance(n_runs, (int, np.integer)) or isinstance(n_runs, bool) or n_runs < 1:
+        raise ValueError(f"n_runs must be a positive int, got {n_runs!r}")
+    if paper_runs is not None and len(paper_runs) != n_runs:
+        raise ValueError(f"paper_runs has {len(paper_runs)} runs, n_runs is {n_runs}")
+    i = 1 if st.include_main else 0
     rows = []
-    for j, snr in enumerate(snrs):
-        sub = replace(st, shape=(128, 128), include_main=False, curved_snr=float(snr),
-                      n_frames=st.curved_first + st.curved_frames,
-                      curved_centre=(st.curved_centre[0] - 110, st.curved_centre[1] - 85))
-        runs = run_trials(_sequence_trial, n_runs, seed=seed + 1000 * j, runner=runner,
-                          args=(sub,), desc=f"SNR {snr:g}")
-        cov = np.array([r["coverage"][0] for r in runs])
-        fr = np.array([r["target_frames"][0] for r in runs])
+    for snr in snrs:
+        if paper_runs is not None and float(snr) == float(st.curved_snr):
+            runs = paper_runs
+        else:
+            runs = run_trials(_sequence_trial, n_runs, seed=seed, runner=runner,
+                              args=(replace(st, curved_snr=float(snr)),), desc=f"SNR {snr:g}")
+        cov = np.array([r["coverage"][i] for r in runs])
+        fr = np.array([r["target_frames"][i] for r in runs])
+        k = int(np.sum(cov >= CURVED_COVERAGE))
+        share, lo, hi = run_share(k, n_runs)
         rows.append({"SNR": float(snr),
-                     "P_DA measured": float(np.sum([r["target_area_det"][0] for r in runs])
+                     "P_DA measured": float(np.sum([r["target_area_det"][i] for r in runs])
                                             / fr.sum()),
-                     "recovered (coverage >= 0.5)": float(np.mean(cov >= 0.5)),
+                     "recovered runs": k, "recovered share": share, "CP low": lo, "CP high": hi,
                      "mean coverage": float(cov.mean()),
                      "false tracks / run": float(np.mean([r["n_false_tracks"] for r in runs])),
                      "runs": n_runs})
     return pd.DataFrame(rows)
+
+
+def sweep_example(st: SequenceSettings, snr: float, n_runs: int, *,
+                  seed: int | np.random.SeedSequence = 3) -> dict[str, Any]:
+    """Run 0 of :func:`snr_sweep` (and of :func:`sequence_experiment`) at ``snr``, kept for plots.
+
+    The same generator as the sweep's first sequence, so a Fig. 7 panel shows a member of the
+    sweep, not another draw.
+    """
+    rng = trial_generators(seed, n_runs)[0]
+    return run_sequence(rng, replace(st, curved_snr=float(snr)), keep=True)

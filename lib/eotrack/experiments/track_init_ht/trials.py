@@ -92,7 +92,7 @@ class Fig1Result:
 
 
 def fig1_monte_carlo(*, snr: list[float], p_f: float, window: int, target_pixels: int,
-                     n_noise: int, n_target: int, seed: int = 1,
+                     n_noise: int, n_target: int, seed: int | np.random.SeedSequence = 1,
                      runner: TrialRunner | None = None) -> Fig1Result:
     """Fig. 1 from eqs. (4)–(7) and the exact count, with a pixel-level Monte Carlo.
 
@@ -169,7 +169,8 @@ class Fig2Result:
 
 
 def fig2_monte_carlo(*, snr: float, gate: int, frames: int, p_f: np.ndarray, n: int,
-                     seed: int = 2, runner: TrialRunner | None = None) -> Fig2Result:
+                     seed: int | np.random.SeedSequence = 2,
+                     runner: TrialRunner | None = None) -> Fig2Result:
     """Fig. 2 from eqs. (8)–(13) with a Monte Carlo of the association-gate model."""
     p_f = np.asarray(p_f, dtype=float)
     p_d = np.asarray(hyp.snr_to_pd(snr, p_f))
@@ -221,7 +222,8 @@ def _initiator_trial(rng: np.random.Generator, p_d: float, p_f: float, gate: int
 
 
 def initiator_monte_carlo(*, snr: float, p_f: np.ndarray, gate: int, frames: int,
-                          min_hits: int, n: int, region: int = 15, seed: int = 5,
+                          min_hits: int, n: int, region: int = 15,
+                          seed: int | np.random.SeedSequence = 5,
                           runner: TrialRunner | None = None) -> pd.DataFrame:
     """The temporal-test initiator itself against eqs. (12)–(13).
 
@@ -237,7 +239,9 @@ def initiator_monte_carlo(*, snr: float, p_f: np.ndarray, gate: int, frames: int
     n_b = max(1, int(np.ceil(n / batch)))
     for i, pf in enumerate(np.asarray(p_f, dtype=float)):
         pdv = float(hyp.snr_to_pd(snr, pf))
-        cnt = np.sum(run_trials(_initiator_trial, n_b, seed=seed + 100 * i, runner=runner,
+        sub = (seed + 100 * i if not isinstance(seed, np.random.SeedSequence) else
+               np.random.SeedSequence(seed.entropy, spawn_key=(*seed.spawn_key, i)))
+        cnt = np.sum(run_trials(_initiator_trial, n_b, seed=sub, runner=runner,
                                 args=(pdv, float(pf), gate, frames, min_hits, batch, region),
                                 desc=f"initiator P_F {pf:g}"), axis=0)
         nn = n_b * batch
