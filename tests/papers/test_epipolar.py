@@ -13,11 +13,13 @@ from eotrack.repro import Status, load_claims
 
 EXPECTED = {
     "epipolar.table1": Status.REPRODUCED,
+    "epipolar.table2": Status.REPRODUCED,
     "epipolar.fig3": Status.REPRODUCED,
     "epipolar.fig4": Status.PARTIAL,
     "epipolar.table3": Status.NOT_REPRODUCED,
     "epipolar.table4": Status.REPRODUCED,
-    "epipolar.fig5": Status.PARTIAL,
+    # quick run (100 draws): the in-band correct rate's interval reaches below 85 %
+    "epipolar.fig5": Status.NOT_REPRODUCED,
     "epipolar.fig6": Status.NOT_REPRODUCED,
     "epipolar.table5": Status.NOT_REPRODUCED,
     "epipolar.fig8": Status.NOT_REPRODUCED,
@@ -32,7 +34,7 @@ def rep():
 def test_every_claim_once(rep):
     ids = [r.claim for r in rep.claims]
     assert sorted(ids) == sorted(load_claims("epipolar"))
-    assert len(ids) == len(set(ids)) == 9
+    assert len(ids) == len(set(ids)) == 10
 
 
 @pytest.mark.parametrize("claim", sorted(EXPECTED))
@@ -54,7 +56,9 @@ def test_core_numbers(rep):
     assert np.allclose(f6["Poisson (overlapping)"], f6["binomial (overlapping)"], atol=0.03)
     assert f6.loc[5, "ours MC (overlapping views)"] > 3 * f6.loc[5, "paper"]
     t4 = rep.tables["Table 4"]
-    assert (t4["ours noise-free (px)"].iloc[[2, 4]] < 0.01).all()  # exact poses: ~0 px
+    # exact poses: correct pairs sit at ~0 px noise-free (lens distortion only)
+    free_true = t4["ours noise-free, correct pairs (px)"].to_numpy()
+    assert np.nanmax(free_true) < 0.01
     beyond = rep.tables["Beyond: association rules at L = 10 px"].set_index("rule")
     paper = beyond.loc["paper (greedy nearest)"]
     three = beyond.loc["paper + three-view check"]
@@ -206,3 +210,85 @@ def test_tradeoff_view_reuses_the_figure():
     with pytest.raises(TypeError, match="study_fn"):
         E.TradeoffView(3)
     plt.close("all")
+
+
+# ----------------------------------------------------------------- verdict machinery and statistics
+def test_claim_kinds_and_central():
+    claims = load_claims("epipolar")
+    import tomllib
+
+    from eotrack.repro.claims import papers_repro_dir
+    raw = tomllib.loads((papers_repro_dir() / "epipolar" / "claims.toml").read_text())["claims"]
+    kinds = {k: v["kind"] for k, v in raw.items()}
+    assert set(kinds) == set(claims)
+    assert {k for k, v in kinds.items() if v == "check"} == {
+        "epipolar.table1", "epipolar.table2", "epipolar.fig3"}
+    assert {k for k, v in raw.items() if v.get("central")} == {"epipolar.fig5",
+                                                                "epipolar.table5"}
+    assert raw["epipolar.table4"]["directional"] is True
+    for v in raw.values():
+        if v.get("central"):
+            assert v["kind"] == "result"
+        for h in v.get("history", []):
+            assert {"date", "criterion", "reason", "after_results"} <= set(h)
+
+
+@pytest.mark.parametrize("claim", sorted(EXPECTED))
+def test_evaluator_cases(claim):
+    """Every evaluator returns its synthetic cases' statuses and can return not reproduced;
+    partial iff the claim has a band, contradicted iff directional."""
+    import tomllib
+
+    import eotrack.experiments.epipolar.claims as C
+    from eotrack.repro.claims import papers_repro_dir
+    raw = tomllib.loads((papers_repro_dir() / "epipolar" / "claims.toml").read_text())["claims"]
+    fn = getattr(C, "status_" + claim.split(".")[1])
+    cases = fn.cases
+    got = {str(fn(m)) for m, want in cases}
+    for m, want in cases:
+        assert str(fn(m)) == str(want), (claim, m)
+    assert "reproduced" in got and "not reproduced" in got
+    assert ("partial" in got) == ("partial_band" in raw[claim])
+    assert ("contradicted" in got) == bool(raw[claim].get("directional"))
+
+
+def test_table4_is_paired_over_draws(rep):
+    """Table 4's ordering: >= 20 paired draws (same false targets), Bonferroni over 5 pairs."""
+    t4p = rep.data["table4_paired"]
+    assert len(t4p) == 5 and (t4p["n_draws"] >= 20).all()
+    assert (t4p["ci_low"] < t4p["noisy − noise-free (px)"]).all()
+    # the noise-free twin of a Monte Carlo draw has the same false targets (CRN)
+    scen = E.build_scenario()
+    child = int(np.random.default_rng(5).integers(2**63))
+    a = E.draw_observation(np.random.default_rng(child), scen, E.ErrorConfig())
+    b = E.draw_observation(np.random.default_rng(child), scen, E.ErrorConfig().noise_free())
+    for k in range(4):
+        fa, fb = a.points[k][a.labels[k] < 0], b.points[k][b.labels[k] < 0]
+        np.testing.assert_allclose(np.sort(fa, 0), np.sort(fb, 0))
+    # Bonferroni: the interval is wider than an unadjusted 95 % one
+    import eotrack.experiments.epipolar.claims as C
+    mc = E.MonteCarlo(rep.data["trials"], rep.data["sweep"], 10.0)
+    one = C.table4_paired(scen, mc, confidence=1 - 0.05 * 5)  # 95 % per pair, unadjusted
+    assert ((one["ci_high"] - one["ci_low"]) < (t4p["ci_high"] - t4p["ci_low"])).all()
+
+
+def test_fig5_has_bootstrap_intervals(rep):
+    b = rep.data["fig5_bootstrap"]
+    assert b["n_boot"] >= 1000
+    assert b["best_L_ci"][0] <= b["best_L"] <= b["best_L_ci"][1]
+    assert b["acc_ci"][0] <= b["acc"] <= b["acc_ci"][1]
+    assert len(rep.data["trials"]) >= 20
+
+
+def test_root_seed_derives_every_generator():
+    assert E.run_seeds(None) == E.DEFAULT_SEEDS
+    s1, s2 = E.run_seeds(1), E.run_seeds(2)
+    assert s1 == E.run_seeds(1) and s1 != s2 and s1 != E.DEFAULT_SEEDS
+    with pytest.raises(ValueError, match="seed"):
+        E.run_seeds(-1)
+    kw = dict(quick=True, n_draws=20, n_sims=10, runner=TrialRunner(progress=False))
+    r1, r2 = E.reproduce(seed=3, **kw), E.reproduce(seed=3, **kw)
+    assert [c.status for c in r1.claims] == [c.status for c in r2.claims]
+    assert [c.ours for c in r1.claims] == [c.ours for c in r2.claims]
+    r3 = E.reproduce(seed=4, **kw)
+    assert [c.ours for c in r1.claims] != [c.ours for c in r3.claims]

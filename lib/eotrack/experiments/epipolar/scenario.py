@@ -65,19 +65,32 @@ ARCMIN = np.pi / (180 * 60)
 
 
 # --------------------------------------------------------------------------- configuration
+def _table2() -> dict:
+    """Table 2 as printed (``papers_repro/epipolar/claims.toml``, claim ``epipolar.table2``)."""
+    return load_claims(SLUG)["epipolar.table2"].paper
+
+
+_T2 = _table2()["experiment"]
+
+
 @dataclass(frozen=True)
 class SensorConfig:
-    """The experiment's star sensor (Table 2, right column)."""
+    """A star sensor; the defaults are the experiment's sensor of Table 2 (right column), read
+    from ``claims.toml`` (claim ``epipolar.table2``)."""
 
-    fov_deg: float = 2.0
-    resolution_px: int = 512
-    principal_point_px: tuple[float, float] = (252.44, 235.33)
-    radial: tuple[float, float] = (-4.85e-5, -1.45e-5)
-    tangential: tuple[float, float] = (4.63e-5, -3.04e-7)
-    accuracy_xy_arcsec: float = 6.0
-    accuracy_z_arcsec: float = 40.0
-    nea_arcsec: float = 2.3
-    limit_mag: float = 13.0
+    fov_deg: float = float(_T2["fov_deg"])
+    resolution_px: int = int(_T2["resolution_px"])
+    principal_point_px: tuple[float, float] = tuple(float(x) for x in _T2["principal_point_px"])
+    radial: tuple[float, float] = tuple(float(x) for x in _T2["radial"])
+    tangential: tuple[float, float] = tuple(float(x) for x in _T2["tangential"])
+    accuracy_xy_arcsec: float = float(_T2["accuracy_xy_arcsec"])
+    accuracy_z_arcsec: float = float(_T2["accuracy_z_arcsec"])
+    nea_arcsec: float = float(_T2["nea_arcsec"])
+    limit_mag: float = float(_T2["limit_mag"])
+
+    def __post_init__(self) -> None:
+        check_positive(self.fov_deg, "fov_deg")
+        check_int(self.resolution_px, "resolution_px", min_value=2)
 
     @property
     def K(self) -> np.ndarray:
@@ -297,16 +310,20 @@ def nominal_draw(scenario: Scenario, seed: int = 2019, errors: ErrorConfig = Err
 
 
 # --------------------------------------------------------------------------- Table 2
-#: The reference sensor of Table 2 (left column); the experiment's sensor is ``SensorConfig()``.
-ST_APS2_2 = SensorConfig(fov_deg=20.0, resolution_px=1024,
-                         principal_point_px=(504.87, 470.65), limit_mag=5.5)
-
+#: The reference sensor of Table 2 (left column, from ``claims.toml``); the experiment's sensor
+#: is ``SensorConfig()``.
+ST_APS2_2 = SensorConfig(fov_deg=float(_table2()["reference"]["fov_deg"]),
+                         resolution_px=int(_table2()["reference"]["resolution_px"]),
+                         principal_point_px=tuple(float(x) for x in
+                                                  _table2()["reference"]["principal_point_px"]),
+                         limit_mag=float(_table2()["reference"]["limit_mag"]))
 
 def sensor_table(sensors: dict[str, SensorConfig] | None = None) -> pd.DataFrame:
     """Table 2 from the configs: one column per sensor, with the derived focal length (eq. 7)
     and pixel scale."""
-    sensors = sensors if sensors is not None else {"ST-APS2-2": ST_APS2_2,
-                                                   "experiment sensor": SensorConfig()}
+    if sensors is None:
+        t2 = _table2()
+        sensors = {t2["reference"]["name"]: ST_APS2_2, t2["experiment"]["name"]: SensorConfig()}
     cols = {}
     for name, s in sensors.items():
         if not isinstance(s, SensorConfig):

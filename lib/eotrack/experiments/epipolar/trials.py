@@ -347,8 +347,16 @@ def triangulation_trial(rng: np.random.Generator, scenario: Scenario, errors: Er
 def scenario_trial(rng: np.random.Generator, scenario: Scenario, errors: ErrorConfig,
                    thresholds: np.ndarray, nominal_px: float = 10.0) -> dict:
     """One seeded scenario draw: threshold sweep (paper rule), Table 3/4/5 statistics, the
-    three-view check and the global assignment at ``nominal_px``."""
-    obs = draw_observation(rng, scenario, errors)
+    three-view check and the global assignment at ``nominal_px``.
+
+    Each draw also has a noise-free twin with the same false targets (common random numbers:
+    both come from one child seed of ``rng``), associated at ``nominal_px``, for the paired
+    Table 4 comparison (``mean_d0``; ``*_true`` keys use the correct pairs only).
+    """
+    check_generator(rng)
+    child = int(rng.integers(2**63))
+    obs = draw_observation(np.random.default_rng(child), scenario, errors)
+    obs0 = draw_observation(np.random.default_rng(child), scenario, errors.noise_free())
     dists = {(a, b): pair_distances(obs, a, b) for a, b in PAIRS}
     correct, false, n_true = sweep_counts(obs, thresholds, distances=dists)
     true_d = np.concatenate([
@@ -362,8 +370,14 @@ def scenario_trial(rng: np.random.Generator, scenario: Scenario, errors: ErrorCo
     sch = score_matches(obs, mh)
     rows = summary_rows(obs, m)
     errs = triangulation_errors(obs, rows, scenario)
+    m0 = associate_observation(obs0, nominal_px)
+    sc0 = score_matches(obs0, m0)
     return {"correct": correct, "false": false, "n_true": n_true, "true_d": true_d,
             "mean_d": sc["mean_distance_px"].to_numpy(),
+            "mean_d0": sc0["mean_distance_px"].to_numpy(),
+            "mean_d_true": _mean_true_distance(obs, m),
+            "mean_d0_true": _mean_true_distance(obs0, m0),
+            "all_true_associated": bool(sc["missed"].sum() == 0),
             "false_nominal": int(sc["false"].sum()), "missed_nominal": int(sc["missed"].sum()),
             "false_3view": int(sc3["false"].sum()), "missed_3view": int(sc3["missed"].sum()),
             "false_hungarian": int(sch["false"].sum()),
@@ -371,6 +385,19 @@ def scenario_trial(rng: np.random.Generator, scenario: Scenario, errors: ErrorCo
             "perfect_table": perfect_summary(obs, rows, scenario),
             "objects_recovered": objects_recovered(obs, rows, scenario),
             "tri_err_km": errs}
+
+
+def _mean_true_distance(obs: Observation, matches) -> np.ndarray:
+    """Per map pair: mean distance of the *correct* associated pairs (NaN if none)."""
+    out = []
+    for (a, b), (pairs, dist) in matches.items():
+        if not len(pairs):
+            out.append(np.nan)
+            continue
+        la, lb = obs.labels[a][pairs[:, 0]], obs.labels[b][pairs[:, 1]]
+        ok = (la == lb) & (la >= 0)
+        out.append(float(dist[ok].mean()) if ok.any() else np.nan)
+    return np.array(out)
 
 
 def closest_other_object_px(scenario: Scenario) -> dict[str, float]:
