@@ -1,53 +1,109 @@
-"""House style and shared figure helpers (every helper takes ``ax=None``)."""
+"""The collection's one house style for figures, and the figure lint's rules.
+
+Notebooks and ``make repro`` draw with the same settings, so a figure looks the same in a
+notebook, in a REPORT and in the book.
+
+Using it
+--------
+* **Turn it on.** Notebooks call :func:`eotrack.notebook.setup_notebook` (which calls
+  :func:`use_house_style`); ``python -m eotrack.repro`` calls :func:`use_house_style` once.
+  In a test or a script: ``with house_style(): fig = plot_something(...)``.
+* **One look per method.** ``ax.plot(x, y, label="RANSAC", **method_style("ransac").line())``;
+  bars: ``**method_style(m).bar()`` (colour and hatch), scatter: ``.scatter()``. The colour is
+  from the Okabe–Ito palette and every pair of methods also differs in line style or marker,
+  so no pair relies on colour alone (deuteranopia, greyscale print). Names are matched
+  case-insensitively (``"wransac_refit"`` and ``"WRANSAC (refit weights, 1 step)"`` are the
+  same method). Series that are not methods (objects, stations): ``series_styles(n)``.
+  Overlays on dark star-field images: the colours in :data:`ON_IMAGE`.
+* **Axes.** ``label_axes(ax, x="time $t$", xunit="s", y=r"$P_\\mathrm{FA}$", title=...)``:
+  every axis labelled with its unit, symbols in mathtext; every panel titled (the title says
+  what is shown). Log axes: ``log_axis(ax, "y")`` labels decades as plain numbers.
+* **Legends off the data.** ``legend_outside(ax)`` beside one axes, ``legend_outside(fig,
+  where="below")`` one shared legend for all panels; or ``ax.legend(loc=...)`` in a corner the
+  lint confirms is free.
+* **Paper values beside ours.** ``paper_values(ax, x, y)`` (hollow black diamonds),
+  ``kind="bar"`` (hollow hatched bars, offset ``x`` to stand beside ours), ``kind="hline"`` /
+  ``kind="band"``, wherever the paper gives numbers.
+* **Size.** Default figure :data:`FIG_WIDTH_IN` × :data:`FIG_HEIGHT_IN` in; the book's column is
+  :data:`BOOK_WIDTH_IN` in (:data:`BOOK_COLUMN_PX` px). A figure wider than the column is
+  shrunk by the browser; at the column width no text may be under :data:`MIN_FONT_PT` pt (the
+  house fonts are 9–11 pt: do not pass ``fontsize`` below 9 to a figure of default width).
+
+The lint
+--------
+:func:`lint_figure` draws a figure and returns its problems: overlapping text (from the
+rendered bounding boxes, rotated labels as rotated boxes), a legend covering data, an axis
+without a label, text under 8 pt at the book's width, a figure or panel without a title, two
+series with the same colour and style, log-axis labels like ``2×10⁰``. ``tests/figures/`` runs
+it on every public figure function of the library.
+"""
 
 from __future__ import annotations
 
-from collections.abc import Sequence
-from pathlib import Path
 from typing import Any
 
-import matplotlib.pyplot as plt
-import numpy as np
+from .helpers import (
+    get_ax,
+    label_axes,
+    legend_outside,
+    log_axis,
+    paper_marker,
+    paper_values,
+    plain_number,
+    savefig,
+)
+from .lint import FigureProblem, effective_font_scale, lint_figure
+from .style import (
+    BOOK_COLUMN_PX,
+    BOOK_WIDTH_IN,
+    FIG_HEIGHT_IN,
+    FIG_WIDTH_IN,
+    HOUSE_RC,
+    MIN_FONT_PT,
+    OKABE_ITO,
+    ON_IMAGE,
+    MethodStyle,
+    house_style,
+    known_methods,
+    method_style,
+    series_styles,
+    use_house_style,
+)
 
-__all__ = ["STYLE", "get_ax", "paper_marker", "savefig", "style"]
+__all__ = [
+    "BOOK_COLUMN_PX",
+    "BOOK_WIDTH_IN",
+    "FIG_HEIGHT_IN",
+    "FIG_WIDTH_IN",
+    "HOUSE_RC",
+    "MIN_FONT_PT",
+    "OKABE_ITO",
+    "ON_IMAGE",
+    "STYLE",
+    "FigureProblem",
+    "MethodStyle",
+    "effective_font_scale",
+    "get_ax",
+    "house_style",
+    "known_methods",
+    "label_axes",
+    "legend_outside",
+    "lint_figure",
+    "log_axis",
+    "method_style",
+    "paper_marker",
+    "paper_values",
+    "plain_number",
+    "savefig",
+    "series_styles",
+    "style",
+    "use_house_style",
+]
 
-STYLE: dict[str, Any] = {
-    "figure.figsize": (6.4, 4.0),
-    "figure.dpi": 100,
-    "axes.grid": True,
-    "grid.alpha": 0.3,
-    "axes.spines.top": False,
-    "axes.spines.right": False,
-    "legend.frameon": False,
-    "font.size": 10,
-    "axes.titlesize": 11,
-    "image.cmap": "gray",
-}
+#: The house rc settings (the name used before :data:`HOUSE_RC`; the same dict).
+STYLE: dict[str, Any] = HOUSE_RC
 
 
 def style() -> None:
-    """Apply the house style to matplotlib's global rc settings."""
-    plt.rcParams.update(STYLE)
-
-
-def get_ax(ax: plt.Axes | None = None, **fig_kw: Any) -> plt.Axes:
-    """Return ``ax`` or a new axes in a new figure."""
-    if ax is not None:
-        return ax
-    _, ax = plt.subplots(**fig_kw)
-    return ax
-
-
-def paper_marker(ax: plt.Axes, x: Sequence[float], y: Sequence[float], *,
-                 label: str = "paper", **kw: Any) -> Any:
-    """Plot the paper's values as hollow black markers on ``ax``."""
-    kw = {"marker": "o", "mfc": "none", "mec": "k", "ls": "none", "ms": 7, **kw}
-    return ax.plot(np.asarray(x), np.asarray(y), label=label, **kw)
-
-
-def savefig(fig: plt.Figure, path: str | Path, *, dpi: int = 110) -> Path:
-    """Save ``fig`` to ``path`` (parents created) and return the path."""
-    p = Path(path)
-    p.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(p, dpi=dpi, bbox_inches="tight")
-    return p
+    """Apply the house style globally (the name used before :func:`use_house_style`)."""
+    use_house_style()
