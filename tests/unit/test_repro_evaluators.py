@@ -37,11 +37,13 @@ def test_every_status_reachable(slug, cid):
     assert not problems, "\n".join(problems)
 
 
-@pytest.mark.parametrize("slug", SLUGS)
-def test_no_evaluator_without_a_claim(slug):
-    importlib.import_module(f"eotrack.experiments.{slug}")
-    extra = set(registered_evaluators(slug)) - set(load_claims(slug))
-    assert not extra, f"evaluators registered for claims not in claims.toml: {sorted(extra)}"
+def test_no_evaluator_without_a_claim():
+    ids = set()
+    for slug in SLUGS:
+        importlib.import_module(f"eotrack.experiments.{slug}")
+        ids |= set(load_claims(slug))
+    extra = {c for c in registered_evaluators() if not c.startswith("demo.")} - ids
+    assert not extra, f"evaluators registered for claims not in any claims.toml: {sorted(extra)}"
 
 
 def test_machinery_catches_a_floor(tmp_path):
