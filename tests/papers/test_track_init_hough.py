@@ -9,11 +9,15 @@ import pytest
 from eotrack.experiments import track_init_hough as exp
 from eotrack.repro import Status, load_claims
 
+# Statuses of the quick run (the paper's method's; our variants never set them). The full run
+# (make repro) gives method_comparison "partial": with 4 scenes per density the paired
+# Bonferroni interval of (a) is too wide to hold.
 EXPECTED = {
-    "track_init.xu_table2": Status.PARTIAL,
-    "track_init.xu_fig3": Status.PARTIAL,
-    "track_init.method_comparison": Status.PARTIAL,
-    "track_init.planted_scenes": Status.PARTIAL,
+    "track_init.xu_table2": Status.NOT_REPRODUCED,
+    "track_init.xu_fig3": Status.NOT_REPRODUCED,
+    "track_init.method_comparison": Status.NOT_REPRODUCED,
+    "track_init.planted_scenes": Status.NOT_REPRODUCED,
+    "track_init.chance_rate": Status.NOT_REPRODUCED,
 }
 
 
@@ -32,6 +36,56 @@ def test_one_row_per_claim(rep):
 def test_status(rep, claim):
     row = next(r for r in rep.claims if r.claim == claim)
     assert row.status is EXPECTED[claim], row.note
+
+
+def test_variant_results_are_reported_beside_the_paper_status(rep):
+    rows = {r.claim: r for r in rep.claims}
+    for cid in ("track_init.xu_table2", "track_init.xu_fig3", "track_init.planted_scenes"):
+        assert rows[cid].variant, cid
+    # the 26-neighbourhood variant recovers the scene, yet the paper's status is not reproduced
+    assert "100 %" in rows["track_init.xu_fig3"].variant or "9" in rows["track_init.xu_fig3"].variant
+
+
+def test_statistics_rules_of_the_full_run():
+    """Orderings on >= 20 paired scenes per point, >= 100 planted and clutter-only scenes."""
+    n = exp.trial_counts(quick=False)
+    assert n["comparison"] >= 20 and n["planted"] >= 100 and n["chance"] >= 100
+    assert n["redraws"] >= 100
+
+
+def test_comparison_intervals_are_paired_and_corrected():
+    import pandas as pd
+    from eotrack.experiments.track_init_hough.claims import FIVE, comparison_intervals
+
+    rng = np.random.default_rng(1)
+    rows = []
+    for trial in range(25):
+        base = rng.poisson(5)
+        for lam in (5.0, 10.0):
+            for j, m in enumerate(FIVE):
+                rows.append({"trial": trial, "sweep": "clutter", "clutter": lam, "method": m,
+                             "false": base + (6 - j)})  # common scene effect cancels
+    iv = comparison_intervals(pd.DataFrame(rows), n_frames=6)
+    lo, hi = iv["a"]
+    assert np.allclose(lo, hi) and np.all(np.asarray(lo) > 0)  # paired: zero width
+    assert iv["n"] == 25
+    with pytest.raises(ValueError, match="conf"):
+        comparison_intervals(pd.DataFrame(rows), 6, conf=1.5)
+
+
+def test_root_seed_changes_the_draws_and_is_repeatable():
+    a = exp.reproduce(quick=True, seed=3, n_redraws=4, n_trials=2, n_aux_trials=2, n_scenes=3,
+                      n_chance=2)
+    b = exp.reproduce(quick=True, seed=3, n_redraws=4, n_trials=2, n_aux_trials=2, n_scenes=3,
+                      n_chance=2)
+    c = exp.reproduce(quick=True, seed=4, n_redraws=4, n_trials=2, n_aux_trials=2, n_scenes=3,
+                      n_chance=2)
+    assert [r.status for r in a.claims] == [r.status for r in b.claims]
+    assert a.data["planted"].equals(b.data["planted"].assign(**{"ms per frame": a.data["planted"]["ms per frame"]}))
+    assert not a.data["planted"]["false"].equals(c.data["planted"]["false"]) or \
+        not a.data["redraws"]["false"].equals(c.data["redraws"]["false"])
+    with pytest.raises(ValueError, match="seed"):
+        exp.reproduce(quick=True, seed=-1)
 
 
 def test_paper_settings_are_the_library_defaults():

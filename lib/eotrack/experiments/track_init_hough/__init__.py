@@ -19,9 +19,10 @@ Entry point: :func:`reproduce` (``python -m eotrack.repro track_init_hough``).
 
 from __future__ import annotations
 
-from dataclasses import asdict
+from dataclasses import asdict, replace
 
 import matplotlib.pyplot as plt
+import numpy as np
 import pandas as pd
 
 from eotrack.montecarlo import TrialRunner
@@ -157,20 +158,32 @@ def reproduce(*, quick: bool = False, runner: TrialRunner | None = None,
               comparison: ComparisonConfig | None = None, n_redraws: int | None = None,
               n_trials: int | None = None, n_aux_trials: int | None = None,
               planted: PlantedConfig | None = None, n_scenes: int | None = None,
-              n_chance: int | None = None) -> Reproduction:
+              n_chance: int | None = None, seed: int | None = None) -> Reproduction:
     """Run the 4-frame experiment, its redraws, the method comparison, the planted scenes and
     the extras.
 
     ``quick`` uses fewer redraws and Monte Carlo trials (tests); ``n_redraws`` (Xu scene
     redraws), ``n_trials`` (comparison trials per point), ``n_aux_trials`` (analytic-logic,
     angle-constraint and Stone Soup trials), ``n_scenes`` (planted scenes) and ``n_chance``
-    (clutter-only scenes per level) override the counts.
+    (clutter-only scenes per level) override the counts. ``seed`` ``None`` is the committed
+    run; an integer is an independent root seed from which every generator of the run is
+    derived (``numpy.random.SeedSequence(seed).spawn``: the Xu scene's stars and noise, its
+    redraws, the comparison, the planted scenes and the chance-rate check).
     """
     claims = load_claims(SLUG)
     runner = runner or TrialRunner(progress=False)
     cfg = xu_config()
     comp_cfg = comparison or ComparisonConfig()
     pl_cfg = planted or PlantedConfig()
+    redraw_seed, chance_seed = 7, 99
+    if seed is not None:
+        if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or seed < 0:
+            raise ValueError(f"seed must be None or a non-negative integer, got {seed!r}")
+        kids = [int(c.generate_state(1)[0]) for c in np.random.SeedSequence(int(seed)).spawn(5)]
+        cfg = replace(cfg, seed=kids[0])
+        comp_cfg = replace(comp_cfg, seed=kids[1])
+        pl_cfg = replace(pl_cfg, seed=kids[2])
+        redraw_seed, chance_seed = kids[3], kids[4]
     n = trial_counts(quick, comp_cfg, pl_cfg)
     n_redraws = n["redraws"] if n_redraws is None else n_redraws
     n_trials = n["comparison"] if n_trials is None else n_trials
@@ -188,11 +201,12 @@ def reproduce(*, quick: bool = False, runner: TrialRunner | None = None,
     logs["ours"], all_tracks["ours"] = xu_table2(cfg, scene, literal=False)
     nominal["ours"] = score_tracks(all_tracks["ours"], scene, n=cfg.rule_m - 1, m=cfg.rule_m)
     nominal["ours"]["n_tracks"] = len(all_tracks["ours"])
-    redraws = xu_redraws(cfg, n_redraws, runner=runner)
-    comp = run_comparison(comp_cfg, n_trials=n_comp, runner=runner, xu=cfg)
+    redraws = xu_redraws(cfg, n_redraws, runner=runner, seed=redraw_seed)
+    comp, comp_trials = run_comparison(comp_cfg, n_trials=n_comp, runner=runner, xu=cfg,
+                                       per_trial=True)
     logic_ft = logic_false_track_table(comp_cfg, n_trials=n_aux_trials, runner=runner, xu=cfg)
     angle = angle_constraint_table(comp_cfg, n_trials=n_aux_trials, runner=runner, xu=cfg)
-    chance = chance_rate_check(pl_cfg, n_trials=n_chance, runner=runner)
+    chance = chance_rate_check(pl_cfg, n_trials=n_chance, runner=runner, seed=chance_seed)
     planted_df = run_planted(pl_cfg, n_scenes=n_scenes, runner=runner, xu=cfg)
     planted_summary = summarise_planted(planted_df)
     try:
@@ -243,7 +257,8 @@ def reproduce(*, quick: bool = False, runner: TrialRunner | None = None,
     fig, ax = plt.subplots()
     plot_angle_constraint(angle, ax=ax)
     figs["angle_constraint"] = fig
-    rows = evaluate(claims, cfg, table2, nominal, redraws, comp, angle, planted_df, chance)
+    rows = evaluate(claims, cfg, table2, nominal, redraws, comp, angle, planted_df, chance,
+                    comp_trials=comp_trials, n_frames_comp=comp_cfg.n_frames)
     text = (
         "## Scenario\n\n"
         f"Field {cfg.fov_deg}° × {cfg.fov_deg}°, {cfg.width_px} px, {cfg.n_frames} frames at "
@@ -262,7 +277,7 @@ def reproduce(*, quick: bool = False, runner: TrialRunner | None = None,
         "Vote counting (our reading, see the notebook's errata): P(t) is the number of distinct "
         "frames among the detections recorded in Q(t); a confirmed track must also be one "
         "constant-velocity line consistent with its cell (one detection per frame).")
-    settings = {"quick": quick, "n_redraws": n_redraws, "n_comparison_trials": n_comp,
+    settings = {"quick": quick, "root_seed": seed, "n_redraws": n_redraws, "n_comparison_trials": n_comp,
                 "n_aux_trials": n_aux_trials, "n_planted_scenes": n_scenes,
                 "n_chance_scenes_per_level": n_chance,
                 **{k: v for k, v in asdict(cfg).items() if k != "targets"},

@@ -118,14 +118,19 @@ def _comparison_trial(rng: np.random.Generator, cfg: ComparisonConfig, xu: XuCon
 
 def run_comparison(cfg: ComparisonConfig, *, n_trials: int | None = None,
                    runner: TrialRunner | None = None, xu: XuConfig | None = None,
-                   methods: tuple[str, ...] | None = None) -> pd.DataFrame:
+                   methods: tuple[str, ...] | None = None, per_trial: bool = False,
+                   ) -> pd.DataFrame | tuple[pd.DataFrame, pd.DataFrame]:
     """Monte Carlo of every initiator versus clutter density and versus detection probability.
+
+    Every method runs on the same scenes (common random numbers), so differences between
+    methods are paired per trial.
 
     Returns
     -------
     pandas.DataFrame
         One row per sweep point and method: ``p_correct`` (correct initiations / eligible
-        objects), ``false_per_frame`` (false tracks per frame) and the trial count.
+        objects), ``false_per_frame`` (false tracks per frame) and the trial count. With
+        ``per_trial=True``, also the per-trial rows (column ``trial``) as a second value.
     """
     xu = xu or xu_config()
     runner = runner or TrialRunner(progress=False)
@@ -135,13 +140,13 @@ def run_comparison(cfg: ComparisonConfig, *, n_trials: int | None = None,
     names = tuple(methods or comparison_initiators(cfg, xu).keys())
     res = runner.map(_comparison_trial, n, seed=cfg.seed, args=(cfg, xu, points, names),
                      desc="method comparison")
-    df = pd.DataFrame([r for trial in res for r in trial])
+    df = pd.DataFrame([dict(r, trial=i) for i, trial in enumerate(res) for r in trial])
     g = df.groupby(["sweep", "clutter", "p_detect", "method"], sort=False)
     out = g.agg(correct=("correct", "sum"), eligible=("eligible", "sum"),
                 false=("false", "sum"), trials=("false", "size")).reset_index()
     out["p_correct"] = out["correct"] / out["eligible"].clip(lower=1)
     out["false_per_frame"] = out["false"] / (out["trials"] * cfg.n_frames)
-    return out
+    return (out, df) if per_trial else out
 
 
 def timing_table(cfg: ComparisonConfig, n_candidates: tuple[int, ...] = (10, 25, 50, 100),
