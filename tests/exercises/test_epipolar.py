@@ -18,12 +18,12 @@ def _right_2(F, p1, p2):
 
 
 def _right_1():
-    # independent of the module: scan n until (n - 1)/sqrt(n) exceeds 3
-    return next(n for n in range(2, 100) if (n - 1) / np.sqrt(n) > 3)
+    # independent of the module: scan n until (n - 1)/sqrt(n) exceeds 2.5
+    return next(n for n in range(2, 100) if (n - 1) / np.sqrt(n) > 2.5)
 
 
 def _right_3():
-    st = E.threshold_study()
+    st = E.threshold_study(2.0, 3)
     th = np.linspace(0, st.l_max, 241)
     return float(th[np.argmin(st.rates(th)["total"])])
 
@@ -32,20 +32,70 @@ RIGHT = {
     "epipolar.1": _right_1,
     "epipolar.2": lambda: _right_2,
     "epipolar.3": _right_3,
-    "epipolar.4": lambda: 0.01 * 512 / (2 * np.tan(np.radians(1.0))),
+    "epipolar.4": lambda: 0.01 * 1024 / (2 * np.tan(np.radians(10.0))),
     "epipolar.5": lambda: E.error_budget_gate(
-        E.build_scenario(), E.ErrorConfig(attitude_arcmin=np.sqrt(3.0)))[1],
+        E.build_scenario(), E.ErrorConfig(attitude_arcmin=np.sqrt(3.0)), p=0.95)[1],
 }
 
 WRONG = {
-    "epipolar.1": lambda: 10,  # the off-by-one: (10 - 1)/sqrt(10) < 3
+    "epipolar.1": lambda: 11,  # the paper's 3σ rule, not the 2.5σ one asked
     "epipolar.2": lambda: (lambda F, p1, p2: np.abs(
         np.column_stack([p2, np.ones(len(p2))]) @ F
         @ np.column_stack([p1, np.ones(len(p1))]).T).T),  # algebraic, not normalised
     "epipolar.3": lambda: 10.0,  # the paper's threshold
-    "epipolar.4": lambda: 0.01 * 206264.8 / 14.06 / 1000,  # mrad read as µrad
-    "epipolar.5": lambda: E.error_budget_gate(E.build_scenario(), E.ErrorConfig())[1],
+    "epipolar.4": lambda: 0.01 * 512 / (2 * np.tan(np.radians(1.0))),  # the experiment sensor
+    "epipolar.5": lambda: E.error_budget_gate(
+        E.build_scenario(), E.ErrorConfig(attitude_arcmin=np.sqrt(3.0)))[1],  # the 99 % gate
 }
+
+MORE_WRONG = [
+    ("epipolar.1", 8),  # population s (ddof = 0): sqrt(n - 1) > 2.5
+    ("epipolar.1", 10),
+    ("epipolar.3", None),  # the ±1′ optimum, filled in below
+    ("epipolar.4", 0.01 * 1024 / (2 * np.tan(np.radians(10.0))) / 1000),  # µrad
+    ("epipolar.4", 0.01 * 1024 / (2 * np.radians(10.0)) * 2),  # half field read as full
+    ("epipolar.5", "uniform95"),  # the ±1′ bound reading at 95 %
+    ("epipolar.5", "chi2_2"),  # two degrees of freedom
+]
+
+
+def _more_wrong(ex, v):
+    from scipy.stats import chi2
+    scen = E.build_scenario()
+    if ex == "epipolar.3":
+        st = E.threshold_study(1.0, 3)
+        th = np.linspace(0, st.l_max, 241)
+        return float(th[np.argmin(st.rates(th)["total"])])
+    if v == "uniform95":
+        return E.error_budget_gate(scen, E.ErrorConfig(), p=0.95)[1]
+    if v == "chi2_2":
+        s, _ = E.error_budget_gate(scen, E.ErrorConfig(attitude_arcmin=np.sqrt(3.0)))
+        return s * np.sqrt(chi2.ppf(0.95, 2))
+    return v
+
+
+@pytest.mark.parametrize(("ex", "v"), MORE_WRONG)
+def test_more_wrong_answers_fail(ex, v):
+    assert not check(ex, _more_wrong(ex, v))
+
+
+def test_ex2_rejects_the_library_and_opencv():
+    import functools
+
+    import cv2
+    from eotrack.geometry import epipolar_distances
+
+    assert not check("epipolar.2", epipolar_distances)
+    assert not check("epipolar.2", lambda F, p1, p2: epipolar_distances(F, p1, p2))
+    assert not check("epipolar.2", functools.partial(epipolar_distances))
+    assert not check("epipolar.2", lambda F, p1, p2: E.epipolar_distances(F, p1, p2))
+
+    def with_cv(F, p1, p2):
+        lines = cv2.computeCorrespondEpilines(p1.reshape(-1, 1, 2), 1, F).reshape(-1, 3)
+        return np.abs(lines[:, :2] @ p2.T + lines[:, 2:])
+
+    assert not check("epipolar.2", with_cv)
+    assert check("epipolar.2", _right_2)  # numpy only passes
 
 
 def test_at_least_four_exercises():

@@ -2,26 +2,91 @@
 
 Expected values are computed with the library on first use; nothing is typed in.
 
-1. derivation — the smallest number of estimates for which a 3σ rule can reject one;
-2. computation — eq. (8) as a function (run on hidden inputs);
-3. exploration — the threshold of smallest total error in the notebook's widget;
-4. critique — the paper's "10 mrad" jitter in pixels of its own sensor;
-5. computation — the error-budget gate with the paper's 1′ read as an rms error.
+1. derivation — the smallest number of estimates for which a 2.5σ rule can reject one
+   (the notebook states the 3σ case; Samuelson's inequality);
+2. computation — eq. (8) as a function with numpy only (run on hidden inputs; a function that
+   calls eotrack or OpenCV is rejected);
+3. exploration — the threshold of smallest total error in the notebook's widget at ±2′;
+4. critique — the paper's "10 mrad" jitter in pixels of the reference ST-APS2-2 sensor;
+5. computation — the 95 % error-budget gate with the paper's 1′ read as an rms error.
 """
 
 from __future__ import annotations
+
+import inspect
+import types
+from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
 from eotrack.exercises import FunctionAnswer, NumericAnswer, register
 from eotrack.geometry import epipolar_distances, max_z_score
 
-__all__: list[str] = []
+__all__ = ["NumpyOnlyFunctionAnswer", "uses_forbidden"]
+
+
+#: the z-score rule of exercise 1 (the paper's is 3σ, discussed in the notebook)
+EX1_K = 2.5
+#: attitude bound (′) of exercise 3's widget setting
+EX3_ATTITUDE = 2.0
+#: probability of exercise 5's gate
+EX5_P = 0.95
+
+_FORBIDDEN = ("eotrack", "cv2")
+
+
+def _forbidden_name(obj: Any) -> str | None:
+    """The eotrack / OpenCV object ``obj`` is or refers to (functions, modules), else None."""
+    mod = obj.__name__ if isinstance(obj, types.ModuleType) else \
+        getattr(obj, "__module__", None) or ""
+    if isinstance(mod, str) and mod.split(".")[0] in _FORBIDDEN and mod != "__main__":
+        return getattr(obj, "__qualname__", getattr(obj, "__name__", repr(obj)))
+    return None
+
+
+def uses_forbidden(fn: Any) -> str | None:
+    """Name of an eotrack / OpenCV object that ``fn`` is, wraps or references, else None."""
+    seen = set()
+    todo = [fn]
+    while todo:
+        f = todo.pop()
+        if id(f) in seen:
+            continue
+        seen.add(id(f))
+        name = _forbidden_name(f)
+        if name:
+            return name
+        inner = getattr(f, "func", None)  # functools.partial
+        if inner is not None:
+            todo.append(inner)
+        if isinstance(f, types.FunctionType):
+            try:
+                cv = inspect.getclosurevars(f)
+            except (TypeError, ValueError):  # pragma: no cover - exotic callables
+                continue
+            for v in [*cv.globals.values(), *cv.nonlocals.values()]:
+                if isinstance(v, types.FunctionType | types.ModuleType) or callable(v):
+                    todo.append(v)
+    return None
+
+
+@dataclass
+class NumpyOnlyFunctionAnswer(FunctionAnswer):
+    """A :class:`FunctionAnswer` that also rejects a function using eotrack or OpenCV."""
+
+    def judge(self, answer: Any) -> bool:
+        name = uses_forbidden(answer)
+        if name:
+            self._why = (f"your function uses {name} from eotrack/OpenCV; the exercise asks "
+                         "for numpy only")
+            return False
+        return super().judge(answer)
 
 
 def _ex1_expected() -> int:
     n = 2
-    while max_z_score(n) <= 3.0:
+    while max_z_score(n) <= EX1_K:
         n += 1
     return n
 
@@ -38,47 +103,55 @@ def _ex2_inputs() -> list[tuple]:
 def _ex3_expected() -> float:
     from eotrack.experiments.epipolar import threshold_study
 
-    th, r = threshold_study().curves()
+    th, r = threshold_study(EX3_ATTITUDE, 3).curves()
     return float(th[int(np.argmin(r["total"]))])
 
 
 def _ex4_expected() -> float:
-    from eotrack.experiments.epipolar import SensorConfig
+    from eotrack.experiments.epipolar import ST_APS2_2
 
-    return float(10e-3 * SensorConfig().K[0, 0])
+    return float(10e-3 * ST_APS2_2.K[0, 0])
 
 
 def _ex5_expected() -> float:
     from eotrack.experiments.epipolar import ErrorConfig, build_scenario, error_budget_gate
 
-    return float(error_budget_gate(build_scenario(), ErrorConfig(attitude_arcmin=3**0.5))[1])
+    return float(error_budget_gate(build_scenario(), ErrorConfig(attitude_arcmin=3**0.5),
+                                   p=EX5_P)[1])
 
 
 register("epipolar.1", NumericAnswer(
-    "The smallest number n of estimates for which the paper's 3σ rule can reject one.",
+    "The smallest number n of estimates for which a 2.5σ rule (sample standard deviation) "
+    "can reject one.",
     expected=_ex1_expected, rtol=0.0, atol=1e-9,
-    hint="the extreme case is one sample against n − 1 equal ones; solve (n − 1)/√n > 3"))
+    hint="the extreme case is one sample against n − 1 equal ones; with s from n − 1 in the "
+         "denominator its z-score is (n − 1)/√n — solve (n − 1)/√n > 2.5 (√(n − 1) is the "
+         "population-s version)"))
 
-register("epipolar.2", FunctionAnswer(
-    "dist(F, p1, p2): the (n1, n2) matrix of point-to-epipolar-line distances of eq. (8).",
+register("epipolar.2", NumpyOnlyFunctionAnswer(
+    "dist(F, p1, p2): the (n1, n2) matrix of point-to-epipolar-line distances of eq. (8), "
+    "numpy only.",
     reference=epipolar_distances, inputs=_ex2_inputs, rtol=1e-6, atol=1e-6,
     hint="lines = [p1 | 1] Fᵀ; divide each line by sqrt(a² + b²); then |a u + b v + c| for "
          "every point of image 2 — and check the shape is (n1, n2), not (n2, n1)"))
 
 register("epipolar.3", NumericAnswer(
-    "Threshold L (px) of smallest total error in the Explore panel, paper's error model.",
+    "Threshold L (px) of smallest total error in the Explore panel at ±2′ attitude error and "
+    "3 false targets per map.",
     expected=_ex3_expected, rtol=0.0, atol=0.5,
-    hint="set attitude ±1′ and 3 false targets, move L and watch the solid curve (or the "
+    hint="set attitude ±2′ and 3 false targets, move L and watch the solid curve (or the "
          "total in the title)"))
 
 register("epipolar.4", NumericAnswer(
-    "The paper's 10 mrad jitter expressed in pixels of the experiment's 2°, 512-px sensor.",
+    "The paper's 10 mrad jitter expressed in pixels of the reference ST-APS2-2 sensor "
+    "(20°, 1024 px, Table 2).",
     expected=_ex4_expected, rtol=0.02,
     hint="an angle θ (rad) near the axis moves the image by f/dx · θ pixels; f/dx comes from "
-         "eq. (7)"))
+         "eq. (7) with the reference sensor's field of view and resolution"))
 
 register("epipolar.5", NumericAnswer(
-    "The 99 % error-budget gate (px) with the paper's 1′ read as an rms attitude error.",
+    "The 95 % error-budget gate (px) with the paper's 1′ read as an rms attitude error.",
     expected=_ex5_expected, rtol=0.02,
-    hint="uniform noise of bound b has rms b/√3, so pass attitude_arcmin = √3 to ErrorConfig; "
-         "the gate is the second value error_budget_gate returns"))
+    hint="uniform noise of bound b has rms b/√3, so pass attitude_arcmin = √3 to ErrorConfig "
+         "and p = 0.95 to error_budget_gate (the gate is its second value); the distance is "
+         "one coordinate, so χ² has one degree of freedom"))
