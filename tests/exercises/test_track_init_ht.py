@@ -15,11 +15,31 @@ from scipy.stats import binom
 SLUG = "track_init_ht"
 
 
-def _right_1(p_f, w_s, s):
-    return binom.sf(s - 1, w_s, p_f)
+def _right_1(p_d_pixels, p_f, w_s, s):
+    pmf = np.array([1.0])
+    for p in p_d_pixels:
+        pmf = np.convolve(pmf, [1 - p, p])
+    pmf = np.convolve(pmf, binom.pmf(np.arange(w_s - len(p_d_pixels) + 1),
+                                     w_s - len(p_d_pixels), p_f))
+    return float(pmf[s:].sum())
 
 
-def _right_3():
+def _wrong_1_mean_binomial(p_d_pixels, p_f, w_s, s):
+    """The tempting shortcut: every target pixel at the mean probability."""
+    ts = len(p_d_pixels)
+    return float(hyp.area_detection_exact(float(np.mean(p_d_pixels)), p_f, math.isqrt(w_s), ts, s))
+
+
+def _wrong_1_strict(p_d_pixels, p_f, w_s, s):
+    return _right_1(p_d_pixels, p_f, w_s, min(s + 1, w_s)) if s < w_s else 0.0  # D > S
+
+
+def _wrong_1_eq7(p_d_pixels, p_f, w_s, s):
+    return float(hyp.area_detection(float(np.mean(p_d_pixels)), p_f, math.isqrt(w_s),
+                                    len(p_d_pixels), s))
+
+
+def _right_3_exact():
     # independent of the module's helper: scan S and solve for the SNR with scipy directly
     p_f = 10 ** -2.5
     best = np.inf
@@ -33,29 +53,44 @@ def _right_3():
     return best
 
 
-def _right_4():
-    ps = paper_settings()
-    p_f = ps["fig1_p_f"]
+def _pda_ex4(ts, s, exact=True):
+    p_f = paper_settings()["fig1_p_f"]
     p_d = float(hyp.snr_to_pd(2.0, p_f))
-    pmf = np.convolve(binom.pmf(np.arange(5), 4, p_d), binom.pmf(np.arange(22), 21, p_f))
-    return float(pmf[4:].sum())
+    if not exact:
+        return float(hyp.area_detection(p_d, p_f, 5, ts, s))
+    pmf = np.convolve(binom.pmf(np.arange(ts + 1), ts, p_d),
+                      binom.pmf(np.arange(25 - ts + 1), 25 - ts, p_f))
+    return float(pmf[s:].sum())
+
+
+def _s_ex2(side, p_f=0.01, req=1e-8, strict=False):
+    n = side * side
+    return next(s for s in range(n + 1) if binom.sf(s if strict else s - 1, n, p_f) <= req)
 
 
 RIGHT = {
-    "track_init_ht.1": _right_1,
-    "track_init_ht.2": lambda: next(s for s in range(26)
-                                    if binom.sf(s - 1, 25, paper_settings()["cfar_p_f"]) <= 1e-6),
-    "track_init_ht.3": _right_3,
-    "track_init_ht.4": _right_4,
-    "track_init_ht.5": lambda: (1 - paper_settings()["cfar_p_f"]) ** 16,
+    "track_init_ht.1": [_right_1],
+    "track_init_ht.2": [_s_ex2(7)],
+    # the grid answer, and the exact SNR a student may compute instead of reading the slider
+    "track_init_ht.3": [math.ceil(_right_3_exact() * 10) / 10, _right_3_exact()],
+    "track_init_ht.4": [_pda_ex4(9, 6)],
+    "track_init_ht.5": [(1 - paper_settings()["cfar_p_f"]) ** 16],
 }
 
 WRONG = {
-    "track_init_ht.1": lambda p_f, w_s, s: binom.sf(s, w_s, p_f),  # the off-by-one: D > S
-    "track_init_ht.2": lambda: 7,  # the paper's S: P_FA is above 1e-6 there
-    "track_init_ht.3": lambda: 2.0,
-    "track_init_ht.4": lambda: hyp.area_detection(hyp.snr_to_pd(2.0, 0.003), 0.003, 5, 4, 4),
-    "track_init_ht.5": lambda: 1 - 0.03,
+    "track_init_ht.1": [_wrong_1_mean_binomial, _wrong_1_strict, _wrong_1_eq7],
+    "track_init_ht.2": [_s_ex2(7) - 1,  # the last S that fails
+                        _s_ex2(7, strict=True),  # D > S convention
+                        _s_ex2(5),  # the notebook's 5x5 window
+                        _s_ex2(7) + 1],
+    # exact P_DA < 0.9 at 3.7 (the review's finding); 3.9 is not the smallest
+    "track_init_ht.3": [round(math.ceil(_right_3_exact() * 10) / 10 - 0.1, 1),
+                        round(math.ceil(_right_3_exact() * 10) / 10 + 0.1, 1), 2.0],
+    "track_init_ht.4": [_pda_ex4(9, 6, exact=False),  # eq. (7)
+                        _pda_ex4(4, 6),  # Fig. 1's T_S = 4
+                        _pda_ex4(9, 7),  # D > S
+                        _pda_ex4(9, 5)],
+    "track_init_ht.5": [1 - 0.03],
 }
 
 BAD = {
@@ -67,27 +102,34 @@ BAD = {
 }
 
 
-def _answer(eid, table):
-    a = table[eid]
-    return a if eid == "track_init_ht.1" else a()
-
-
 def test_at_least_four_exercises():
     ids = exercise_ids(SLUG)
     assert len(ids) >= 4
     assert set(ids) == set(RIGHT) == set(WRONG) == set(BAD)
 
 
-@pytest.mark.parametrize("eid", sorted(RIGHT))
-def test_right_answer_passes(eid):
-    assert check(eid, _answer(eid, RIGHT))
+@pytest.mark.parametrize(("eid", "k"), [(e, k) for e in sorted(RIGHT) for k in range(len(RIGHT[e]))])
+def test_right_answer_passes(eid, k):
+    assert check(eid, RIGHT[eid][k])
 
 
-@pytest.mark.parametrize("eid", sorted(WRONG))
-def test_wrong_answer_fails(eid):
-    res = check(eid, _answer(eid, WRONG))
+@pytest.mark.parametrize(("eid", "k"), [(e, k) for e in sorted(WRONG) for k in range(len(WRONG[e]))])
+def test_wrong_answer_fails(eid, k):
+    res = check(eid, WRONG[eid][k])
     assert not res
     assert "hint" in res.message
+
+
+def test_exercise_3_neighbours_of_the_threshold():
+    """3.7 fails the requirement at every admissible S; the grid answer meets it."""
+    p_f = 10 ** -2.5
+    s_ok = [s for s in range(1, 26) if binom.sf(s - 1, 25, p_f) <= 1e-4]
+    best = lambda snr: max(hyp.area_detection_exact(hyp.snr_to_pd(snr, p_f), p_f, 5, 4, s)  # noqa: E731
+                           for s in s_ok)
+    grid = math.ceil(_right_3_exact() * 10) / 10
+    assert best(grid) >= 0.9 > best(round(grid - 0.1, 1))
+    assert not check("track_init_ht.3", 3.7)
+    assert check("track_init_ht.3", grid)
 
 
 @pytest.mark.parametrize("eid", sorted(BAD))
@@ -101,7 +143,10 @@ def test_function_exercise_rejects_a_crashing_function():
     assert not check("track_init_ht.1", lambda p_f, w_s, s: math.sqrt(-1))
 
 
-def test_widget_reading_within_step():
-    # a reading off the panel's 0.1-step SNR slider is accepted
-    exact = _right_3()
-    assert check("track_init_ht.3", round(exact, 1))
+def test_exercise_answers_not_printed_in_the_notebook():
+    """The re-posed settings differ from the ones the notebook prints (review point 4)."""
+    from pathlib import Path
+
+    src = (Path(__file__).parents[2] / "notebooks/py/03_track_init_hypothesis_testing.py").read_text()
+    assert "area_detection_pixels" not in src  # exercise 1's library answer is not shown
+    assert "clustering_threshold(0.01, 7" not in src

@@ -36,6 +36,7 @@ from eotrack.validation import as_finite_array, check_int
 __all__ = [
     "area_detection",
     "area_detection_exact",
+    "area_detection_pixels",
     "area_false_alarm",
     "clustering_threshold",
     "p1_paper",
@@ -284,6 +285,60 @@ def area_detection_exact(p_d: Any, p_f: Any, window: int, target_pixels: int,
     k = np.arange(ts + 1).reshape((-1,) + (1,) * pd_b.ndim)
     terms = binom.pmf(k, ts, pd_b) * _tail(s_b - k, n - ts, pf_b)
     return _out(np.clip(terms.sum(axis=0), 0.0, 1.0), p_d, p_f, s)
+
+
+def area_detection_pixels(p_d_pixels: Any, p_f: Any, window: int, s: Any) -> float | np.ndarray:
+    """Exact area detection probability when the target's pixels differ (a spot, not a box).
+
+    A real spot (eq. 1) is brighter at its centre: target pixel ``i`` is suspicious with its own
+    probability ``p_i``. The count is then a Poisson-binomial ``Σ_i Bernoulli(p_i)`` plus
+    ``Binomial(W_S − T_S, P_F)``: its pmf is the convolution of the ``T_S`` two-point pmfs
+    (built pixel by pixel over the ``T_S ≤ W_S`` pixels, vectorised over ``S`` and ``P_F``),
+    and ``P(D ≥ S) = Σ_k P(target count = k) · P(Binomial(W_S − T_S, P_F) ≥ S − k)``. With
+    every ``p_i`` equal it is :func:`area_detection_exact`.
+
+    Parameters
+    ----------
+    p_d_pixels
+        1-D sequence of the ``T_S`` target pixels' detection probabilities, each in [0, 1]
+        (``1 ≤ T_S ≤ W_S``).
+    p_f
+        Per-pixel false-alarm probability of the noise pixels in [0, 1] (scalar or array).
+    window
+        Side of the square neighbourhood (positive odd integer).
+    s
+        Count threshold ``S`` (``0 ≤ S ≤ W_S``; scalar or array, broadcast against ``p_f``).
+
+    Returns
+    -------
+    float or numpy.ndarray
+        ``P(D ≥ S)``.
+
+    Raises
+    ------
+    ValueError
+        ``p_d_pixels`` empty, not 1-D, outside [0, 1] or longer than ``W_S``; ``s`` outside
+        ``[0, W_S]``; ``window`` not a positive odd integer.
+    """
+    pix = _prob(p_d_pixels, "p_d_pixels")
+    if pix.ndim != 1 or pix.size == 0:
+        raise ValueError(f"p_d_pixels must be a non-empty 1-D sequence, got shape {pix.shape}")
+    pf = _prob(p_f, "p_f")
+    w = _odd_size(window, "window")
+    n = w * w
+    ts = pix.size
+    if ts > n:
+        raise ValueError(f"p_d_pixels has {ts} pixels, more than W_S = window**2 = {n}")
+    ss = _ints(s, "s", lo=0, hi=n, hi_name="W_S = window**2")
+    pmf = np.zeros(ts + 1)
+    pmf[0] = 1.0
+    for i, p in enumerate(pix):  # T_S <= W_S steps of a vectorised two-point convolution
+        pmf[1:i + 2] = pmf[1:i + 2] * (1 - p) + pmf[:i + 1] * p
+        pmf[0] *= 1 - p
+    pf_b, s_b = np.broadcast_arrays(pf, ss)
+    k = np.arange(ts + 1).reshape((-1,) + (1,) * pf_b.ndim)
+    terms = pmf.reshape(k.shape) * _tail(s_b - k, n - ts, pf_b)
+    return _out(np.clip(terms.sum(axis=0), 0.0, 1.0), p_f, s)
 
 
 # --------------------------------------------------------------------------- temporal continuity
