@@ -46,7 +46,7 @@ def test_claim_metadata_and_history():
     cl = load_claims(exp.SLUG)
     assert {c for c, v in cl.items() if v.central} == {"ransac_crlb_pose.fig4",
                                                         "ransac_crlb_pose.fig5"}
-    for cid, c in raw.items():
+    for c in raw.values():
         assert c["kind"] == "result" and c["partial_band"]
         # the protocol was fixed by someone who had seen results: every history row says so
         assert c["history"] and all(h["after_results"] for h in c["history"])

@@ -39,18 +39,23 @@ from eotrack.validation import (
 
 from .dlt import dlt_pose, dlt_pose_batch, plane_frame
 from .fisher import _du_dxc, _sigma
-from .projection import _check_K, check_rotation, check_translation, skew
+from .projection import _check_K, check_rotation, check_translation
 
 __all__ = [
+    "CAUCHY_C",
+    "SOLVERS",
     "RansacConfig",
     "RansacResult",
+    "adaptive_draws",
     "best_initial_pose",
     "ippe_poses",
+    "ransac_pose",
     "ransac_pose_dlt",
     "ransac_pose_opencv",
     "refine_pose",
     "refine_pose_opencv",
     "reprojection_errors",
+    "robust_refine_pose",
 ]
 
 
@@ -115,6 +120,12 @@ def refine_pose(points: Any, pixels: Any, K: Any, R0: Any, t0: Any, *,
     -------
     R, t
         Refined pose.
+
+    Raises
+    ------
+    ValueError
+        If the start pose puts any point behind the camera (``z ≤ 0``), where the projection
+        and its Jacobian are undefined.
     """
     X = as_points(points, "points", dim=3)
     u = as_points(pixels, "pixels", dim=2)
@@ -126,6 +137,28 @@ def refine_pose(points: Any, pixels: Any, K: Any, R0: Any, t0: Any, *,
     t = check_translation(t0, "t0").copy()
     max_iter = check_int(max_iter, "max_iter", min_value=1)
     w = np.ones(len(X)) if sigma_px is None else 1.0 / _sigma(sigma_px, len(X)) ** 2
+    behind = int(np.count_nonzero((X @ R.T + t)[:, 2] <= 0))
+    if behind:
+        raise ValueError(f"R0, t0 put {behind} of {len(X)} points behind the camera (z ≤ 0): "
+                         "the reprojection error is undefined there, so refinement cannot start; "
+                         "give a start pose with every point in front (e.g. from ransac_pose)")
+
+    return _lm(X, u, K, R, t, w, max_iter, tol)
+
+
+def _skew(v: np.ndarray) -> np.ndarray:
+    """:func:`skew` of an (n, 3) array without input checks (hot path)."""
+    out = np.zeros((len(v), 3, 3))
+    out[:, 0, 1], out[:, 0, 2] = -v[:, 2], v[:, 1]
+    out[:, 1, 0], out[:, 1, 2] = v[:, 2], -v[:, 0]
+    out[:, 2, 0], out[:, 2, 1] = -v[:, 1], v[:, 0]
+    return out
+
+
+def _lm(X: np.ndarray, u: np.ndarray, K: np.ndarray, R: np.ndarray, t: np.ndarray,
+        w: np.ndarray, max_iter: int = 30, tol: float = 1e-9) -> tuple[np.ndarray, np.ndarray]:
+    """Weighted LM core of :func:`refine_pose` (inputs already checked, start in front)."""
+    t = t.copy()
 
     def residual(R: np.ndarray, t: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         RX = X @ R.T
@@ -139,7 +172,7 @@ def refine_pose(points: Any, pixels: Any, K: Any, R0: Any, t0: Any, *,
     lam = 1e-3
     for _ in range(max_iter):
         D = _du_dxc(xc, K)
-        G = np.concatenate([D, -D @ skew(RX)], axis=2)
+        G = np.concatenate([D, -D @ _skew(RX)], axis=2)
         Gw = G * w[:, None, None]
         H = np.einsum("nki,nkj->ij", Gw, G)
         g = np.einsum("nki,nk->i", Gw, r)
@@ -239,41 +272,108 @@ def best_initial_pose(points: Any, pixels: Any, K: Any, *,
     return best
 
 
+SOLVERS = ("p3p", "ap3p", "epnp", "sqpnp", "dlt")
+_MIN_SAMPLE = {"p3p": 4, "ap3p": 4, "epnp": 4, "sqpnp": 3, "dlt": 6}
+
+
 @dataclass(frozen=True)
 class RansacConfig:
-    """Settings of the paper's RANSAC (§2.2); the paper gives none of the numbers.
+    """Settings of a robust (RANSAC) pose estimate.
+
+    The defaults are a general-purpose robust PnP: minimal P3P hypotheses (OpenCV, 4 points:
+    3 to solve, the 4th picks the solution), the best consensus over the draws, adaptive
+    stopping by eq. (2) of the paper (notebook 01) with the running inlier ratio, and local
+    optimisation (Levenberg–Marquardt on the inliers, re-classification, repeated) of the best
+    hypothesis. :meth:`paper` gives the paper's reading of §2.2 (6-point DLT, first draw with
+    enough inliers accepted, a fixed number of draws), which the reproduction uses.
 
     Attributes
     ----------
     sample_size
-        Points per random draw (6 in the paper: the linear DLT minimum).
+        Points per random draw; ``None`` = the solver's minimum (p3p/ap3p/epnp 4, sqpnp 3,
+        dlt 6, the paper's linear minimum).
     inlier_threshold_px
-        Reprojection-error threshold of the inlier test (image units).
+        Reprojection-error threshold of the inlier test, in image units (pixels when ``K`` is in
+        pixels). About 2.5–3 × the largest expected noise σ; the default 4 px suits
+        σ ≲ 1.5 px (chosen on the random family of ``benchmarks/bench_ransac_crlb_pose.py``).
     min_inlier_ratio
-        Step 3: a model is accepted when at least this fraction of all points are inliers.
+        A model is accepted only when at least this fraction of all points are its inliers
+        (paper's step 3); otherwise RANSAC reports failure.
     max_draws
-        Step 5: the preset number of draws after which RANSAC reports failure.
+        Cap on the number of draws (the paper's preset number; also the adaptive cap).
     refit
-        Re-estimate the pose from all inliers of the accepted model (§2.2's general description:
-        :func:`best_initial_pose`, i.e. DLT or IPPE + unweighted LM) and re-run the inlier test
-        once with it.
+        Paper mode only: re-estimate the pose from all inliers of the accepted model
+        (:func:`best_initial_pose`) and re-run the inlier test once.
     batch
-        Draws evaluated per vectorised batch (does not change the result).
+        Draws evaluated per vectorised batch (paper mode: does not change the result).
+    solver
+        Minimal solver for the hypotheses: ``"p3p"``, ``"ap3p"``, ``"epnp"``, ``"sqpnp"``
+        (OpenCV) or ``"dlt"`` (the paper's linear 6-point pose, vectorised).
+    adaptive
+        Stop after ``N = log(1 − confidence) / log(1 − w^s)`` draws, ``w`` = the best inlier
+        ratio so far and ``s`` the sample size (eq. (2)), capped at ``max_draws``. ``False``
+        with ``solver="dlt"`` is the paper's procedure (the first draw with enough inliers is
+        accepted); ``False`` with another solver draws ``max_draws`` times and keeps the best.
+    confidence
+        Probability of at least one all-inlier draw, for the adaptive stopping.
+    local_optimisation
+        Refine the best hypothesis on its inliers (unweighted LM), re-classify the points and
+        repeat until the inlier set stops changing (at most ``lo_iterations`` rounds).
+    lo_iterations
+        Rounds of local optimisation.
+    robust_refinement
+        Finally re-weight the inliers with the Cauchy loss (iteratively reweighted LM,
+        :func:`robust_refine_pose`): points with large residuals — in practice the noisier
+        ones — weigh less, which helps when the noise differs from point to point.
+    irls_iterations
+        Re-weighting rounds of the robust refinement.
     """
 
-    sample_size: int = 6
-    inlier_threshold_px: float = 1.0
-    min_inlier_ratio: float = 0.7
-    max_draws: int = 500
+    sample_size: int | None = None
+    inlier_threshold_px: float = 4.0
+    min_inlier_ratio: float = 0.3
+    max_draws: int = 1000
     refit: bool = True
-    batch: int = 64
+    batch: int = 16
+    solver: str = "p3p"
+    adaptive: bool = True
+    confidence: float = 0.99
+    local_optimisation: bool = True
+    lo_iterations: int = 4
+    robust_refinement: bool = True
+    irls_iterations: int = 3
 
     def __post_init__(self) -> None:
-        check_int(self.sample_size, "sample_size", min_value=6)
+        from eotrack.validation import check_choice
+
+        check_choice(self.solver, "solver", list(SOLVERS))
+        if self.sample_size is None:
+            object.__setattr__(self, "sample_size", _MIN_SAMPLE[self.solver])
+        check_int(self.sample_size, "sample_size", min_value=_MIN_SAMPLE[self.solver])
         check_positive(self.inlier_threshold_px, "inlier_threshold_px")
         check_probability(self.min_inlier_ratio, "min_inlier_ratio", open_low=True)
         check_int(self.max_draws, "max_draws", min_value=1)
         check_int(self.batch, "batch", min_value=1)
+        check_probability(self.confidence, "confidence", open_low=True, open_high=True)
+        check_int(self.lo_iterations, "lo_iterations", min_value=1)
+        check_int(self.irls_iterations, "irls_iterations", min_value=1)
+        for name in ("refit", "adaptive", "local_optimisation", "robust_refinement"):
+            if not isinstance(getattr(self, name), bool):
+                raise TypeError(f"{name} must be a bool, got {type(getattr(self, name)).__name__}")
+
+    @property
+    def paper_mode(self) -> bool:
+        """True for the paper's procedure (6-point DLT, first accepted draw, fixed count)."""
+        return self.solver == "dlt" and not self.adaptive
+
+    @classmethod
+    def paper(cls, **changes: Any) -> RansacConfig:
+        """The paper's reading of §2.2: 6-point DLT, the first draw with ≥ 70 % inliers is
+        accepted, 500 draws, refit on the inliers; ``changes`` override fields."""
+        base = dict(sample_size=6, inlier_threshold_px=1.0, min_inlier_ratio=0.7,
+                    max_draws=500, refit=True, batch=64, solver="dlt", adaptive=False,
+                    local_optimisation=False, robust_refinement=False)
+        return cls(**{**base, **changes})
 
 
 @dataclass(frozen=True)
@@ -298,6 +398,200 @@ class RansacResult:
         return int(np.count_nonzero(self.inliers))
 
 
+_CV_FLAGS = {"p3p": cv2.SOLVEPNP_P3P, "ap3p": cv2.SOLVEPNP_AP3P, "epnp": cv2.SOLVEPNP_EPNP,
+             "sqpnp": cv2.SOLVEPNP_SQPNP}
+
+
+def _hypotheses(X: np.ndarray, u: np.ndarray, K: np.ndarray, idx: np.ndarray, solver: str,
+                planar: bool) -> tuple[np.ndarray, np.ndarray]:
+    """Poses (B', 3, 3), (B', 3) from the draws ``idx`` (B, s); a draw may give 0–4 poses.
+
+    ``dlt`` is vectorised over the draws; the OpenCV solvers are called once per draw (the
+    loop is over the few draws adaptive stopping asks for, not over points).
+    """
+    if solver == "dlt":
+        R, t, ok = dlt_pose_batch(X[idx], u[idx], K, planar=planar)
+        return R[ok], t[ok]
+    flag = _CV_FLAGS[solver]
+    Rs, ts = [], []
+    for row in idx:
+        try:
+            n, rvecs, tvecs, _ = cv2.solvePnPGeneric(X[row], u[row], K, None, flags=flag)
+        except cv2.error:  # degenerate draw (e.g. collinear points)
+            continue
+        for rv, tv in zip(rvecs[:n], tvecs[:n]):
+            Rs.append(cv2.Rodrigues(rv)[0])
+            ts.append(tv.ravel())
+    if not Rs:
+        return np.zeros((0, 3, 3)), np.zeros((0, 3))
+    R, t = np.asarray(Rs, float), np.asarray(ts, float)
+    good = np.all(np.isfinite(R), axis=(1, 2)) & np.all(np.isfinite(t), axis=1)
+    return R[good], t[good]
+
+
+def adaptive_draws(inlier_ratio: float, sample_size: int, confidence: float,
+                   cap: int) -> int:
+    """Draws needed for an all-inlier sample with probability ``confidence`` (eq. (2)).
+
+    ``N = ⌈log(1 − P) / log(1 − w^s)⌉`` with ``w`` the inlier ratio and ``s`` the sample size,
+    clipped to ``[1, cap]`` (``w = 0`` gives ``cap``; ``w = 1`` gives 1).
+    """
+    w = float(inlier_ratio)
+    if not 0.0 <= w <= 1.0:
+        raise ValueError(f"inlier_ratio must lie in [0, 1], got {inlier_ratio!r}")
+    check_int(sample_size, "sample_size", min_value=1)
+    check_probability(confidence, "confidence", open_low=True, open_high=True)
+    cap = check_int(cap, "cap", min_value=1)
+    ws = w ** sample_size
+    if ws <= 0.0:
+        return cap
+    if ws >= 1.0:
+        return 1
+    n = np.log1p(-confidence) / np.log1p(-ws)
+    return int(min(cap, max(1, np.ceil(n))))
+
+
+def _local_optimisation(X: np.ndarray, u: np.ndarray, K: np.ndarray, R: np.ndarray,
+                        t: np.ndarray, thr: float, rounds: int, min_pts: int):
+    """Refine on the inliers (unweighted LM), re-classify, repeat until the set is stable."""
+    inl = _batch_errors(X, u, R[None], t[None], K)[0] < thr
+    for _ in range(rounds):
+        if inl.sum() < max(min_pts, 3):
+            break
+        R1, t1 = _lm(X[inl], u[inl], K, R, t, np.ones(int(inl.sum())), max_iter=10)
+        new = _batch_errors(X, u, R1[None], t1[None], K)[0] < thr
+        if new.sum() < inl.sum():
+            break
+        R, t = R1, t1
+        if np.array_equal(new, inl):
+            break
+        inl = new
+    return R, t, inl
+
+
+#: Tuning constant of the Cauchy loss (95 % efficiency under Gaussian noise).
+CAUCHY_C = 2.385
+
+
+def robust_refine_pose(points: Any, pixels: Any, K: Any, R0: Any, t0: Any, *,
+                       iterations: int = 3, c: float = CAUCHY_C) -> tuple[np.ndarray, np.ndarray]:
+    """Cauchy M-estimate of the pose by iteratively reweighted Levenberg–Marquardt.
+
+    Each round estimates the noise scale from the residual norms, ``σ̂ = median|r_i| /
+    √(2 ln 2)`` (the median of a Rayleigh variable), gives point ``i`` the weight
+    ``w_i = 1 / (1 + (|r_i| / (c σ̂))²)`` and refines with :func:`refine_pose`
+    (``sigma_px = w^{-1/2}``).
+
+    Parameters
+    ----------
+    points, pixels, K
+        Correspondences (n ≥ 3, gross errors already removed) and intrinsics.
+    R0, t0
+        Start pose (every point in front of the camera).
+    iterations
+        Re-weighting rounds.
+    c
+        Cauchy tuning constant in units of σ̂ (2.385: 95 % efficient for Gaussian noise).
+
+    Returns
+    -------
+    R, t
+    """
+    X = as_points(points, "points", dim=3)
+    u = as_points(pixels, "pixels", dim=2)
+    check_same_length("points", X, "pixels", u)
+    iterations = check_int(iterations, "iterations", min_value=1)
+    check_positive(c, "c")
+    R, t = refine_pose(X, u, K, R0, t0)   # checks K and the start (raises behind the camera)
+    return _irls(X, u, _check_K(K), R, t, iterations, c)
+
+
+def _irls(X: np.ndarray, u: np.ndarray, K: np.ndarray, R: np.ndarray, t: np.ndarray,
+          iterations: int, c: float = CAUCHY_C) -> tuple[np.ndarray, np.ndarray]:
+    """Cauchy re-weighting rounds of :func:`robust_refine_pose` (inputs checked)."""
+    for _ in range(iterations):
+        r = _batch_errors(X, u, R[None], t[None], K)[0]
+        scale = max(float(np.median(r)) / np.sqrt(2 * np.log(2)), 1e-12)
+        w = 1.0 / (1.0 + (r / (c * scale)) ** 2)
+        R, t = _lm(X, u, K, R, t, w, max_iter=10)
+    return R, t
+
+
+def ransac_pose(points: Any, pixels: Any, K: Any, rng: np.random.Generator,
+                config: RansacConfig | None = None) -> RansacResult:
+    """Robust pose from correspondences with gross errors (RANSAC, §2.2 and beyond).
+
+    With the default :class:`RansacConfig`: P3P hypotheses from random 4-point draws, each
+    scored by its number of inliers (reprojection error below the threshold, scored for all
+    hypotheses of a batch at once), adaptive stopping by eq. (2) with the best inlier ratio so
+    far, local optimisation of the best hypothesis and a Cauchy-weighted final refinement
+    (:func:`robust_refine_pose`). With :meth:`RansacConfig.paper` it
+    is the paper's procedure, steps 1–5 (see :func:`ransac_pose_dlt`).
+
+    Parameters
+    ----------
+    points, pixels
+        (n, 3) target points and (n, 2) matched image points, n ≥ max(6, sample size).
+    K
+        Intrinsic matrix (image units of ``pixels``; any principal point).
+    rng
+        Random generator for the draws.
+    config
+        :class:`RansacConfig` (default: the general-purpose settings).
+
+    Returns
+    -------
+    RansacResult
+        ``success=False`` (not an exception) when no hypothesis reaches
+        ``min_inlier_ratio``: the image is to be discarded.
+    """
+    cfg = config if config is not None else RansacConfig()
+    if not isinstance(cfg, RansacConfig):
+        raise TypeError(f"config must be a RansacConfig, got {type(cfg).__name__}")
+    rng = check_generator(rng)
+    X, u = _check_pair(points, pixels, max(cfg.sample_size, 6))
+    K = _check_K(K)
+    if cfg.paper_mode:
+        return _ransac_paper(X, u, K, rng, cfg)
+    n = len(X)
+    need = max(int(np.ceil(cfg.min_inlier_ratio * n)), cfg.sample_size)
+    sv = np.linalg.svd(X - X.mean(0), compute_uv=False)
+    planar = bool(sv[2] <= 1e-6 * sv[0])
+    best_n, best_R, best_t = -1, None, None
+    target, drawn = cfg.max_draws, 0
+    while drawn < target:
+        b = min(cfg.batch, target - drawn)
+        idx = np.argsort(rng.random((b, n)), axis=1)[:, :cfg.sample_size]
+        drawn += b
+        R, t = _hypotheses(X, u, K, idx, cfg.solver, planar)
+        if len(R) == 0:
+            continue
+        cnt = np.count_nonzero(_batch_errors(X, u, R, t, K) < cfg.inlier_threshold_px, axis=1)
+        k = int(np.argmax(cnt))
+        if cnt[k] > best_n:
+            best_n, best_R, best_t = int(cnt[k]), R[k], t[k]
+            if cfg.adaptive:
+                target = max(drawn, adaptive_draws(best_n / n, cfg.sample_size,
+                                                   cfg.confidence, cfg.max_draws))
+    if best_R is None or best_n < cfg.sample_size:
+        return RansacResult(False, None, None, np.zeros(n, bool), drawn,
+                            f"no hypothesis out of {drawn} draws had >= {cfg.sample_size} "
+                            "inliers: image discarded")
+    R, t = best_R, best_t
+    if cfg.local_optimisation:
+        R, t, inl = _local_optimisation(X, u, K, R, t, cfg.inlier_threshold_px,
+                                        cfg.lo_iterations, cfg.sample_size)
+        if cfg.robust_refinement and inl.sum() >= cfg.sample_size:
+            R, t = _irls(X[inl], u[inl], K, R, t, cfg.irls_iterations)
+    e = _batch_errors(X, u, R[None], t[None], K)[0]
+    inl = e < cfg.inlier_threshold_px
+    if inl.sum() < need:
+        return RansacResult(False, None, None, np.zeros(n, bool), drawn,
+                            f"best hypothesis of {drawn} draws has {int(inl.sum())} inliers "
+                            f"< {need} ({cfg.min_inlier_ratio:g} of {n}): image discarded")
+    return RansacResult(True, R, t, inl, drawn, f"best of {drawn} draws ({cfg.solver})", e)
+
+
 def ransac_pose_dlt(points: Any, pixels: Any, K: Any, rng: np.random.Generator,
                     config: RansacConfig | None = None) -> RansacResult:
     """The paper's RANSAC feature selection with a 6-point DLT pose (§2.2, steps 1–5).
@@ -311,19 +605,21 @@ def ransac_pose_dlt(points: Any, pixels: Any, K: Any, rng: np.random.Generator,
     rng
         Random generator for the draws.
     config
-        :class:`RansacConfig`; paper-style defaults.
+        :class:`RansacConfig`; default :meth:`RansacConfig.paper` (the paper's reading). Any
+        other configuration is run by :func:`ransac_pose`.
 
     Returns
     -------
     RansacResult
         ``success=False`` (not an exception) when ``max_draws`` draws all fail.
     """
-    cfg = config if config is not None else RansacConfig()
-    if not isinstance(cfg, RansacConfig):
-        raise TypeError(f"config must be a RansacConfig, got {type(cfg).__name__}")
-    rng = check_generator(rng)
-    X, u = _check_pair(points, pixels, cfg.sample_size)
-    K = _check_K(K)
+    cfg = config if config is not None else RansacConfig.paper()
+    return ransac_pose(points, pixels, K, rng, cfg)
+
+
+def _ransac_paper(X: np.ndarray, u: np.ndarray, K: np.ndarray, rng: np.random.Generator,
+                  cfg: RansacConfig) -> RansacResult:
+    """Steps 1–5 of §2.2 literally, in vectorised batches (first accepted draw wins)."""
     n = len(X)
     need = int(np.ceil(cfg.min_inlier_ratio * n))
     planar = np.linalg.svd(X - X.mean(0), compute_uv=False)

@@ -8,26 +8,13 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from eotrack.repro import ClaimResult, Status, papers_repro_dir
-
-try:  # the verdict machinery of issue 22
-    from eotrack.repro import evaluator
-except ImportError:  # pragma: no cover - until lib/eotrack/repro gains it
-    def evaluator(claim_id: str, *, cases: list):  # type: ignore[no-redef]
-        """Stand-in for ``eotrack.repro.evaluator``: attaches ``claim_id`` and ``cases``."""
-        def wrap(fn):
-            fn.claim_id, fn.cases = claim_id, list(cases)
-            EVALUATORS[claim_id] = fn
-            return fn
-        return wrap
-
-#: ``Status.CONTRADICTED`` of the issue-22 machinery (a plain string until it lands).
-CONTRADICTED = getattr(Status, "CONTRADICTED", "contradicted")
-#: claim id → evaluator (filled by the stand-in decorator; the real one keeps its own registry)
-EVALUATORS: dict = {}
+from eotrack.repro import ClaimResult, Status, evaluator, papers_repro_dir
 
 from .scenario import READINGS, SLUG, Scenario, Settings
 from .trials import readings_table, wilcoxon_less
+
+#: the ``contradicted`` status (the paper's ordering reversed at 95 % confidence)
+CONTRADICTED = Status.CONTRADICTED
 
 __all__ = ["CONTRADICTED", "best_subset_gain", "bootstrap_mean_ci", "bootstrap_ratio_ci", "evaluate",
            "load_protocol", "status_fig4", "status_fig5", "status_fig6"]
@@ -91,7 +78,7 @@ def _compare_status(m: dict) -> Status:
     lower = m["mean_ratio"] < 1.0
     signif = m["p_less"] < m.get("alpha", 0.05)
     if m["ratio_ci"][0] > 1.0:
-        return CONTRADICTED  # type: ignore[return-value]
+        return Status.CONTRADICTED
     if lower and signif:
         return Status.REPRODUCED
     if lower or signif:

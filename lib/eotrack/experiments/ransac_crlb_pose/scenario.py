@@ -139,11 +139,13 @@ class Settings:
                                  "tolerance")
 
     def ransac_config(self, scenario: Scenario) -> RansacConfig:
-        """RANSAC settings for ``scenario`` (threshold in image mm, scales with the unit)."""
+        """The paper's RANSAC (:meth:`RansacConfig.paper`: 6-point DLT, first accepted draw)
+        for ``scenario`` (threshold in image mm, scales with the unit)."""
         thr = float(np.sqrt(stats.chi2.ppf(self.inlier_chi2, 2)
                             * max(scenario.inlier_variances)) * scenario.noise_unit_mm)
-        return RansacConfig(inlier_threshold_px=thr, min_inlier_ratio=self.min_inlier_ratio,
-                            max_draws=self.max_draws)
+        return RansacConfig.paper(inlier_threshold_px=thr,
+                                  min_inlier_ratio=self.min_inlier_ratio,
+                                  max_draws=self.max_draws)
 
 
 @dataclass(frozen=True)
