@@ -13,9 +13,8 @@ The tracking community scores a set of tracks against the truth with
   truth over all track points).
 
 Both are computed by Stone Soup (:class:`stonesoup.metricgenerator.ospametric.GOSPAMetric`,
-:class:`stonesoup.metricgenerator.tracktotruthmetrics.SIAPMetrics` with a
-:class:`~stonesoup.dataassociator.tracktotrack.TrackToTruth` association) from the
-initiator's tracks (:func:`initiation_metrics`); :func:`gospa_reference` and
+:class:`stonesoup.metricgenerator.tracktotruthmetrics.SIAPMetrics` over a per-time
+nearest-truth association within ``c``) from the initiator's tracks (:func:`initiation_metrics`); :func:`gospa_reference` and
 :func:`siap_reference` are independent hand implementations (an optimal assignment by
 :func:`scipy.optimize.linear_sum_assignment`, a per-time nearest-truth association) used to
 cross-check them in the tests.
@@ -193,41 +192,54 @@ def siap_reference(track_pos: Sequence[dict[int, np.ndarray]], truth_xy: Sequenc
 
 
 def _siap_stonesoup(track_pos, truth_xy, times, *, threshold, width, frames_eval):
-    from stonesoup.dataassociator.tracktotrack import TrackToTruth
+    """SIAP C and S by Stone Soup's ``SIAPMetrics`` over a per-time association: each track
+    point is associated, for that time only, with its nearest present truth within
+    ``threshold`` (Stone Soup's ``TrackToTruth`` needs associations lasting two or more times,
+    which a just-confirmed track does not have)."""
     from stonesoup.metricgenerator.manager import MultiManager
     from stonesoup.metricgenerator.tracktotruthmetrics import SIAPMetrics
+    from stonesoup.types.association import AssociationSet, TimeRangeAssociation
     from stonesoup.types.groundtruth import GroundTruthPath, GroundTruthState
     from stonesoup.types.state import State
+    from stonesoup.types.time import TimeRange
     from stonesoup.types.track import Track as SSTrack
 
+    thr = check_positive(threshold, "threshold")
     present = _truth_present(truth_xy, width)
     ks = sorted(int(k) for k in frames_eval)
     stamp = {k: _EPOCH + _dt.timedelta(seconds=float(times[k])) for k in ks}
+    eps = _dt.timedelta(microseconds=1)
     n_obj = max((len(t) for t in truth_xy), default=0)
-    truths = set()
+    truths: dict[int, GroundTruthPath] = {}
     for j in range(n_obj):
         states = [GroundTruthState(np.r_[truth_xy[k][j], 0.0, 0.0].reshape(4, 1),
                                    timestamp=stamp[k]) for k in ks if present[k][j]]
         if states:
-            truths.add(GroundTruthPath(states))
-    tracks = set()
+            truths[j] = GroundTruthPath(states)
+    tracks, assoc = [], set()
     for s in track_pos:
         states = [State(np.r_[s[k], 0.0, 0.0].reshape(4, 1), timestamp=stamp[k])
                   for k in ks if k in s]
-        if states:
-            tracks.add(SSTrack(states))
+        if not states:
+            continue
+        tr = SSTrack(states)
+        tracks.append(tr)
+        for k in ks:
+            if k not in s or not np.any(present[k]):
+                continue
+            ids = np.flatnonzero(present[k])
+            d = np.hypot(*(np.asarray(truth_xy[k], float)[ids] - s[k]).T)
+            j = int(np.argmin(d))
+            if d[j] <= thr:
+                assoc.add(TimeRangeAssociation({tr, truths[int(ids[j])]},
+                                               TimeRange(stamp[k], stamp[k] + eps)))
     meas = _position_measure()
     siap = SIAPMetrics(position_measure=meas, velocity_measure=meas)
-    assoc = TrackToTruth(association_threshold=float(threshold), consec_pairs_confirm=1,
-                         consec_misses_end=1, measure=meas)
-    mgr = MultiManager([siap], associator=assoc)
-    mgr.add_data({"tracks": tracks, "groundtruth_paths": truths})
-    mgr.associate_tracks(generator=siap)
-    res = mgr.generate_metrics()
-    vals = next(iter(res.values()))
-    c = vals["SIAP Completeness"].value
-    s_ = vals["SIAP Spuriousness"].value
-    return float(c), float(s_)
+    mgr = MultiManager([siap])
+    mgr.add_data({"tracks": set(tracks), "groundtruth_paths": set(truths.values())})
+    mgr.association_set = AssociationSet(assoc)
+    vals = next(iter(mgr.generate_metrics().values()))
+    return (float(vals["SIAP Completeness"].value), float(vals["SIAP Spuriousness"].value))
 
 
 def initiation_metrics(tracks: Sequence[Track], frames: Sequence,

@@ -12,6 +12,7 @@ import pandas as pd
 from eotrack.montecarlo import TrialRunner
 from eotrack.tracking.initiation.base import Track
 from eotrack.tracking.initiation.logic import LogicInitiator
+from eotrack.tracking.metrics import initiation_metrics
 from eotrack.validation import check_int
 
 from .chance import chi2_chance_tracks
@@ -30,10 +31,16 @@ from .scenario import (
     xu_initiator,
 )
 
+#: GOSPA cut-off and SIAP association threshold (pixels): far beyond the 0.3 px noise, well
+#: below the typical spacing of detections.
+METRIC_CUTOFF_PX = 10.0
+
 __all__ = [
+    "METRIC_CUTOFF_PX",
     "angle_constraint_table",
     "run_comparison",
     "run_planted",
+    "summarise_metrics",
     "summarise_planted",
     "timing_table",
     "xu_redraws",
@@ -235,10 +242,12 @@ def _planted_trial(rng: np.random.Generator, cfg: PlantedConfig, xu: XuConfig,
         tracks = inits[name].initiate(scene.frames)
         dt = time.perf_counter() - t0
         sc = score_tracks(tracks, scene, n=xu.rule_m - 1, m=xu.rule_m)
+        met = initiation_metrics(tracks, scene.frames, scene.truth_xy, width=cfg.width_px,
+                                 c=METRIC_CUTOFF_PX, first_frame=xu.rule_m - 2)
         out.append({"method": name, "correct": sc["correct"], "eligible": sc["eligible"],
                     "false": sc["false"], "chance": chance, "objects": scene.n_targets,
                     "clutter": scene.meta["clutter_per_frame"], "non-object per frame": non_obj,
-                    "ms per frame": 1e3 * dt / cfg.n_frames})
+                    "ms per frame": 1e3 * dt / cfg.n_frames, **met})
     return out
 
 
@@ -255,6 +264,21 @@ def run_planted(cfg: PlantedConfig | None = None, *, n_scenes: int | None = None
     res = runner.map(_planted_trial, n, seed=cfg.seed, args=(cfg, xu, names),
                      desc="planted scenes")
     return pd.DataFrame([r for trial in res for r in trial])
+
+
+def summarise_metrics(df: pd.DataFrame) -> pd.DataFrame:
+    """Per initiator, the scene means of GOSPA (c = ``METRIC_CUTOFF_PX``, p = 1, with its
+    missed / false / localisation split, per scored frame) and of SIAP completeness and
+    spuriousness (:func:`eotrack.tracking.metrics.initiation_metrics`), beside recall."""
+    cols = ["gospa", "gospa missed", "gospa false", "gospa localisation", "siap completeness",
+            "siap spuriousness"]
+    missing = [c for c in cols if c not in df.columns]
+    if missing:
+        raise ValueError(f"df lacks the metric columns {missing} (run_planted adds them)")
+    g = df.groupby("method", sort=False)[cols].mean()
+    g.insert(0, "recall", df.groupby("method", sort=False).apply(
+        lambda d: d["correct"].sum() / max(d["eligible"].sum(), 1), include_groups=False))
+    return g
 
 
 def summarise_planted(df: pd.DataFrame) -> pd.DataFrame:
