@@ -12,7 +12,7 @@ the rate ``P_s`` (eqs. 49–50), and a continuity measure (estimate inside the a
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
@@ -33,6 +33,7 @@ from eotrack.validation import check_choice, check_int
 from .scenario import SCENARIO_LABELS, VARIANT_PARTS, VARIANTS, AblationConfig, make_filter
 
 __all__ = [
+    "CV_BASELINE",
     "SENSITIVITY_SETTINGS",
     "AblationResult",
     "SequenceMeasurements",
@@ -170,16 +171,32 @@ def track_sequence(seq: StarSequence, cfg: AblationConfig, rng: np.random.Genera
     return track_measurements(meas, cfg, variants=variants)
 
 
-def ablation_trial(rng: np.random.Generator, scenario_name: str, cfg: AblationConfig
-                   ) -> dict[str, Any]:
+#: the constant-velocity baseline (beyond the paper): adaptive extraction + a CV Kalman filter
+CV_BASELINE: dict[str, tuple[str, str]] = {"CV KF": ("adaptive", "cv")}
+
+
+def ablation_trial(rng: np.random.Generator, scenario_name: str, cfg: AblationConfig,
+                   extras: tuple[tuple[str, AblationConfig, dict[str, tuple[str, str]]], ...]
+                   = ()) -> dict[str, Any]:
     """One sequence of ``scenario_name``: per-frame errors and modes of the four variants, and
-    the measurements they were computed from (for the notebook's Explore panel)."""
+    the measurements they were computed from (for the notebook's Explore panel).
+
+    ``extras``: ``(name, config, variants)`` triples run on the SAME measurements (common
+    random numbers) — e.g. the exploratory settings or the constant-velocity baseline; their
+    errors are returned under ``"extra"`` (name → ``(n_variants, n_frames)``). Only the filter
+    and association settings of an extra's config are used (its extraction is ``cfg``'s).
+    """
     meas = measure_sequence(rng, scenario_name, cfg)
     res = track_measurements(meas, cfg)
     err = np.stack([np.hypot(*(r.xs[:, :2] - meas.truth).T) for r in res.values()])
     modes = np.stack([r.modes for r in res.values()])
+    extra = {}
+    for name, c, variants in extras:
+        rx = track_measurements(meas, c, variants=variants)
+        extra[name] = np.stack([np.hypot(*(r.xs[:, :2] - meas.truth).T)
+                                for r in rx.values()]).astype(np.float32)
     return {"errors": err.astype(np.float32), "modes": modes, "visible": meas.visible,
-            "measurements": meas}
+            "measurements": meas, "extra": extra}
 
 
 @dataclass
@@ -210,6 +227,17 @@ class AblationResult:
     variants: tuple[str, ...]
     config: AblationConfig
     measurements: tuple[tuple[SequenceMeasurements, ...], ...] | None = None
+    extra: dict[str, AblationResult] = field(default_factory=dict)
+
+    def sequence_mean_error(self) -> np.ndarray:
+        """Mean error of each sequence, ``(n_scenarios, n_seeds, n_variants)`` (the paired unit
+        of the verdicts)."""
+        return self.errors.mean(axis=3, dtype=float)
+
+    def sequence_success(self, epsilon_px: float | None = None) -> np.ndarray:
+        """Success rate of each sequence at ε, ``(n_scenarios, n_seeds, n_variants)``."""
+        eps = self.config.epsilon_px if epsilon_px is None else epsilon_px
+        return (self.errors <= eps).mean(axis=3)
 
     def mean_error(self) -> pd.DataFrame:
         """Table 1: mean error E (eq. 48) per scenario and variant."""
@@ -239,19 +267,33 @@ class AblationResult:
 
 
 def run_ablation(cfg: AblationConfig | None = None, *, runner: TrialRunner | None = None,
-                 scenarios: tuple[str, ...] = SCENARIOS) -> AblationResult:
-    """Run the four variants on ``cfg.n_seeds`` sequences of each scenario."""
+                 scenarios: tuple[str, ...] = SCENARIOS,
+                 extras: tuple[tuple[str, AblationConfig, dict[str, tuple[str, str]]], ...] = ()
+                 ) -> AblationResult:
+    """Run the four variants on ``cfg.n_seeds`` sequences of each scenario.
+
+    ``extras`` (see :func:`ablation_trial`) are run on the same sequences; each becomes an
+    :class:`AblationResult` in ``result.extra[name]`` (its own config and variant names, the
+    same modes/visibility arrays of the main run, no measurements).
+    """
     cfg = AblationConfig() if cfg is None else cfg
     errs, modes, vis, meas = [], [], [], []
+    xerr: dict[str, list[np.ndarray]] = {name: [] for name, _, _ in extras}
     for i, sc in enumerate(scenarios):
         out = run_trials(ablation_trial, cfg.n_seeds, seed=sequence_seed(cfg, i),
-                         args=(sc, cfg), runner=runner, desc=f"akf_star {sc}")
+                         args=(sc, cfg, extras), runner=runner, desc=f"akf_star {sc}")
         errs.append(np.stack([o["errors"] for o in out]))
         modes.append(np.stack([o["modes"] for o in out]))
         vis.append(np.stack([o["visible"] for o in out]))
         meas.append(tuple(o["measurements"] for o in out))
-    return AblationResult(np.stack(errs), np.stack(modes), np.stack(vis), tuple(scenarios),
-                          VARIANTS, cfg, tuple(meas))
+        for name in xerr:
+            xerr[name].append(np.stack([o["extra"][name] for o in out]))
+    M, Vis = np.stack(modes), np.stack(vis)
+    extra = {name: AblationResult(np.stack(xerr[name]), M, Vis, tuple(scenarios),
+                                  tuple(variants), c)
+             for name, c, variants in extras}
+    return AblationResult(np.stack(errs), M, Vis, tuple(scenarios), VARIANTS, cfg,
+                          tuple(meas), extra)
 
 
 def sequence_seed(cfg: AblationConfig, scenario_index: int) -> int:
