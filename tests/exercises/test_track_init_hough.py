@@ -18,12 +18,35 @@ def _right_1(t1, t2, t3, which):
     return 1.0 + (1.0 + tau) ** 2 + tau**2
 
 
-def _right_2():
+def _scene2():
     cfg = TH.PlantedConfig()
-    sc = TH.planted_scene(np.random.default_rng(2016), cfg, clutter_per_frame=30.0, n_objects=0,
-                          n_stars=0)
+    return cfg, TH.planted_scene(np.random.default_rng(2016), cfg, clutter_per_frame=30.0,
+                                 n_objects=0, n_stars=0)
+
+
+def _right_2():
+    # the literal §4.6 recipe: no depletion (for a clutter-only scene = chi2_chance_tracks's
+    # upper bound)
+    cfg, sc = _scene2()
+    return TH.chi2_chance_tracks(sc, v_min=cfg.v_gate_px_s[0], v_max=cfg.v_gate_px_s[1],
+                                 sigma_px=cfg.sigma_px, alpha=cfg.alpha, depletion=False)
+
+
+def _depleted_2():
+    # the mean-field depletion the exercise does not ask for (was the accepted answer)
+    cfg, sc = _scene2()
     return TH.chi2_chance_tracks(sc, v_min=cfg.v_gate_px_s[0], v_max=cfg.v_gate_px_s[1],
                                  sigma_px=cfg.sigma_px, alpha=cfg.alpha)
+
+
+def _consecutive_only_2():
+    # only the (k-2, k-1, k) triples (forgetting the two 3-of-4 shapes with a gap)
+    cfg, sc = _scene2()
+    t = [tt for tt, _ in sc.frames]
+    n = [len(xy) for _, xy in sc.frames]
+    return sum(n[k - 2] * n[k - 1] * n[k] * TH.triplet_chance_probability(
+        t[k - 2], t[k - 1], t[k], width=512, v_min=3, v_max=240, sigma_px=0.3, alpha=1e-3)
+        for k in range(2, len(t)))
 
 
 def _right_3():
@@ -45,6 +68,12 @@ WRONG = {
     "track_init_hough.4": lambda: "c",
     "track_init_hough.5": lambda: "a",
 }
+
+
+@pytest.mark.parametrize("wrong", [_depleted_2, _consecutive_only_2])
+def test_exercise2_rejects_the_other_recipes(wrong):
+    assert abs(wrong() / _right_2() - 1) > 0.05
+    assert not check("track_init_hough.2", wrong())
 
 
 def test_at_least_four_exercises():

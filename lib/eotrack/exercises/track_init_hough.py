@@ -5,8 +5,8 @@ Expected values are computed with the library on first use; nothing is typed in.
 
 1. derivation — the χ² disc of the third point: the variance factor ``c`` of a triplet (a
    function of the three frame times);
-2. computation — the analytic chance tracks of the χ² 3-of-4 rule in a seeded clutter-only
-   scene;
+2. computation — the §4.6 sum Σ N₁N₂N₃ P₃ over the triplet shapes (every detection counted as
+   available) in a seeded clutter-only scene;
 3. exploration — the paper's procedure in the Explore panel: false tracks per scene at 50
    clutter points per frame (6-neighbourhood, ρ from the image corner);
 4. critique — why the paper's 6-neighbourhood loses track 2 of the nominal scene;
@@ -35,13 +35,18 @@ def _ex1_inputs() -> list[tuple]:
 
 
 def _ex2_expected() -> float:
+    """Σ over ``triplet_shapes`` of N₁N₂N₃ · P₃ (no depletion), by the notebook's functions."""
     from eotrack.experiments import track_init_hough as TH
 
     cfg = TH.PlantedConfig()
     scene = TH.planted_scene(np.random.default_rng(2016), cfg, clutter_per_frame=30.0,
                              n_objects=0, n_stars=0)
-    return TH.chi2_chance_tracks(scene, v_min=cfg.v_gate_px_s[0], v_max=cfg.v_gate_px_s[1],
-                                 sigma_px=cfg.sigma_px, alpha=cfg.alpha, width=cfg.width_px)
+    t = [tt for tt, _ in scene.frames]
+    n = [len(xy) for _, xy in scene.frames]
+    return float(sum(n[a] * n[b] * n[c] * TH.triplet_chance_probability(
+        t[a], t[b], t[c], width=cfg.width_px, v_min=cfg.v_gate_px_s[0],
+        v_max=cfg.v_gate_px_s[1], sigma_px=cfg.sigma_px, alpha=cfg.alpha)
+        for a, b, c in TH.triplet_shapes(len(t))))
 
 
 def _ex3_expected() -> float:
@@ -60,11 +65,12 @@ register("track_init_hough.1", FunctionAnswer(
 
 register("track_init_hough.2", NumericAnswer(
     "Computation. Draw the clutter-only planted scene planted_scene(default_rng(2016), "
-    "PlantedConfig(), clutter_per_frame=30, n_objects=0, n_stars=0) and compute the expected "
-    "number of chance tracks of the χ² 3-of-4 rule in it (the planted scenes' gate, σ and α).",
+    "PlantedConfig(), clutter_per_frame=30, n_objects=0, n_stars=0) and compute the §4.6 sum "
+    "Σ N₁N₂N₃ P₃ over the frame triples of triplet_shapes, every detection counted as "
+    "available (no depletion), with the planted scenes' gate, σ, α and field width.",
     expected=_ex2_expected, rtol=1e-2,
-    hint="chi2_chance_tracks with the PlantedConfig's v_gate_px_s, sigma_px, alpha and "
-         "width_px (depletion on, the default)"))
+    hint="N_f is the number of detections of frame f; P₃ is triplet_chance_probability of the "
+         "three frames' times; the sum runs over every (a, b, c) of triplet_shapes(6)"))
 
 register("track_init_hough.3", NumericAnswer(
     "Exploration. In the Explore panel, set 50 clutter points per frame, the paper's literal "
@@ -81,7 +87,8 @@ register("track_init_hough.4", Choice(
     "velocity gate; (c) missing frame 3 breaks the 3/4 rule; (d) a residual star took one of "
     "its detections.",
     options=["a", "b", "c", "d"], answer="a",
-    hint="compute cell_of for its pairs (frame 1→2 and 2→4) and compare the cell indices"))
+    hint="compute pair_parameters (§2) for its pairs frame 1→2 and 2→4, divide ρ, θ and v by "
+         "the cell sizes δρ, δθ, δv and compare the integer cell indices"))
 
 register("track_init_hough.5", Choice(
     "Critique. At the comparison's 10 px prediction gate with v_min = 10 px/s the angle-"
