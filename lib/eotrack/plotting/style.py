@@ -137,21 +137,29 @@ class MethodStyle:
     mfc: str | None = None  # marker face colour; ``"none"`` for hollow markers
 
     def line(self, **override: Any) -> dict[str, Any]:
-        """Keyword arguments for ``ax.plot`` (colour, line style, marker)."""
+        """Keyword arguments for ``ax.plot`` (colour, line style, marker); ``override`` wins
+        (``ls=``/``c=`` are accepted for ``linestyle=``/``color=``)."""
         kw: dict[str, Any] = {"color": self.color, "linestyle": self.linestyle,
                               "marker": self.marker}
         if self.mfc is not None:
             kw["mfc"] = self.mfc
-        return {**kw, **override}
+        return {**kw, **_canonical(override)}
 
     def bar(self, **override: Any) -> dict[str, Any]:
         """Keyword arguments for ``ax.bar``/``ax.barh``/``ax.hist`` (colour and hatch)."""
         kw = {"color": self.color, "hatch": self.hatch, "edgecolor": "black", "linewidth": 0.6}
-        return {**kw, **override}
+        return {**kw, **_canonical(override)}
 
     def scatter(self, **override: Any) -> dict[str, Any]:
         """Keyword arguments for ``ax.scatter`` (colour and marker)."""
-        return {"color": self.color, "marker": self.marker, **override}
+        return {"color": self.color, "marker": self.marker, **_canonical(override)}
+
+
+_ALIASES = {"ls": "linestyle", "c": "color", "lw": "linewidth", "ec": "edgecolor"}
+
+
+def _canonical(kw: dict[str, Any]) -> dict[str, Any]:
+    return {_ALIASES.get(k, k): v for k, v in kw.items()}
 
 
 # (canonical name, pattern on the normalised name, colour, line style, marker, hatch, mfc)

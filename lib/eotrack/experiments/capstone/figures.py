@@ -13,6 +13,14 @@ from matplotlib.patches import FancyArrowPatch, FancyBboxPatch
 
 from eotrack.geometry import project_directions
 from eotrack.imaging import BackgroundConfig, SkyConfig, extract_stars
+from eotrack.plotting import (
+    ON_IMAGE,
+    label_axes,
+    legend_outside,
+    log_axis,
+    method_style,
+    series_styles,
+)
 
 from .pipeline import (
     PREDICTORS,
@@ -34,7 +42,7 @@ _FRACTIONS = [
 ]
 
 
-def _ax(ax, figsize=(7, 4)):
+def _ax(ax, figsize=(6.4, 3.9)):
     if ax is None:
         _, ax = plt.subplots(figsize=figsize)
     return ax
@@ -42,44 +50,46 @@ def _ax(ax, figsize=(7, 4)):
 
 def plot_pipeline(*, ax: plt.Axes | None = None) -> plt.Axes:
     """Block diagram of the chain: two stations' per-frame stages merging into the 3-D ones."""
-    ax = _ax(ax, (11, 4.2))
-    ax.set_xlim(0, 11.2)
-    ax.set_ylim(0, 4.2)
-    ax.axis("off")
-    per_station = [("frames\nPSF · noise · sky", "imaging"), ("extraction\nsky extractor", "nb 05"),
-                   ("star / target\ncatalogue + drift", "Gaia"), ("initiation\nmodified Hough",
-                                                                  "nb 04")]
-    joint = [("association\nepipolar", "nb 02"), ("triangulation\nranges", "nb 02"),
-             ("prediction\nthrough eclipse", "nb 01")]
-    w, h = 1.45, 0.9
+    ax = _ax(ax, (7.4, 4.6))
+    ax.set_xlim(0, 10.4)
+    ax.set_ylim(0, 6.6)
+    ax.set_axis_off()
+    per_station = [("frames", "PSF, noise, sky"), ("extraction", "nb 05"),
+                   ("star / target", "Gaia, drift"), ("initiation", "Hough, nb 04")]
+    joint = [("association", "epipolar · nb 02"), ("triangulation", "ranges · nb 02"),
+             ("prediction", "eclipse · nb 01")]
+    w, h = 2.0, 1.05
 
     def box(x, y, text, note, colour):
-        ax.add_patch(FancyBboxPatch((x, y), w, h, boxstyle="round,pad=0.05", fc=colour,
+        ax.add_patch(FancyBboxPatch((x, y), w, h, boxstyle="round,pad=0.04", fc=colour,
                                     ec="0.3", lw=1))
-        ax.text(x + w / 2, y + h / 2 + 0.08, text, ha="center", va="center", fontsize=8)
-        ax.text(x + w / 2, y + 0.1, note, ha="center", va="bottom", fontsize=7, color="0.35")
+        ax.text(x + w / 2, y + 0.68, text, ha="center", va="center", fontsize=9.5,
+                weight="bold")
+        ax.text(x + w / 2, y + 0.28, note, ha="center", va="center", fontsize=9, color="0.25")
 
     def arrow(x0, y0, x1, y1):
-        ax.add_patch(FancyArrowPatch((x0, y0), (x1, y1), arrowstyle="-|>", mutation_scale=10,
-                                     color="0.3", lw=1))
+        ax.add_patch(FancyArrowPatch((x0, y0), (x1, y1), arrowstyle="-|>", mutation_scale=12,
+                                     color="0.3", lw=1.2, shrinkA=0, shrinkB=0))
 
-    ax.add_patch(FancyBboxPatch((0.05, 1.55), 0.9, 1.1, boxstyle="round,pad=0.05", fc="#fde7c4",
-                                ec="0.3"))
-    ax.text(0.5, 2.1, "sky\nSGP4 · Gaia\nshadow", ha="center", va="center", fontsize=8)
-    for row, (y, name) in enumerate(((3.0, "station A"), (0.3, "station B"))):
-        ax.text(1.2, y + h + 0.12, name, fontsize=8, style="italic")
-        arrow(0.95, 2.1, 1.2, y + h / 2)
+    ax.add_patch(FancyBboxPatch((0.05, 2.45), 1.0, 1.7, boxstyle="round,pad=0.04",
+                                fc="#fde7c4", ec="0.3"))
+    ax.text(0.55, 3.3, "sky\nSGP4\nGaia\nshadow", ha="center", va="center", fontsize=9)
+    xs = [1.45 + i * 2.22 for i in range(4)]
+    for y, name in ((5.1, "station A"), (0.4, "station B")):
+        ax.text(xs[0], y + h + 0.12 if y > 3 else y - 0.38, name, fontsize=9, style="italic")
+        arrow(1.05, 3.3 + (0.5 if y > 3 else -0.5), xs[0], y + h / 2)
         for i, (t, n) in enumerate(per_station):
-            x = 1.2 + i * 1.75
-            box(x, y, t, n, "#dbe9f6")
+            box(xs[i], y, t, n, "#dbe9f6")
             if i:
-                arrow(x - 0.3, y + h / 2, x, y + h / 2)
-        arrow(1.2 + 3 * 1.75 + w, y + h / 2, 8.3, 1.65 + h / 2 + (0.2 if row == 0 else -0.2))
-    box(8.3, 1.65, joint[0][0], joint[0][1], "#d9f0d3")
-    box(9.55, 2.85, joint[1][0], joint[1][1], "#d9f0d3")
-    box(9.55, 0.45, joint[2][0], joint[2][1], "#d9f0d3")
-    arrow(8.3 + w / 2, 1.65 + h, 9.55, 2.85 + h / 2)
-    arrow(8.3 + w / 2, 1.65, 9.55, 0.45 + h / 2)
+                arrow(xs[i - 1] + w, y + h / 2, xs[i], y + h / 2)
+    yj = 2.75
+    xj = [xs[3], xs[2] - 0.35, xs[1] - 0.7]
+    for (t, n), x in zip(joint, xj, strict=True):
+        box(x, yj, t, n, "#d9f0d3")
+    arrow(xs[3] + w / 2, 5.1, xs[3] + w / 2, yj + h)      # A → association
+    arrow(xs[3] + w / 2, 0.4 + h, xs[3] + w / 2, yj)      # B → association
+    arrow(xj[0], yj + h / 2, xj[1] + w, yj + h / 2)       # association → triangulation
+    arrow(xj[1], yj + h / 2, xj[2] + w, yj + h / 2)       # triangulation → prediction
     ax.set_title("The chain: per-station stages (blue) feed the two-station stages (green)")
     return ax
 
@@ -88,23 +98,32 @@ def plot_night(plan: NightPlan, *, axes=None):
     """Elevation of each object from each station over the night; dark time and umbra shaded."""
     cfg = plan.config
     if axes is None:
-        _, axes = plt.subplots(1, len(cfg.stations), figsize=(11, 3.6), sharey=True)
+        fig, axes = plt.subplots(1, len(cfg.stations), figsize=(7.4, 3.6), sharey=True,
+                                 layout="constrained")
+    axes_ = np.atleast_1d(axes)
     h = plan.visit_s / 3600 + (plan.t0.datetime.hour + plan.t0.datetime.minute / 60)
     hg = plan.grid_s / 3600 + (plan.t0.datetime.hour + plan.t0.datetime.minute / 60)
-    for s, ax in enumerate(np.atleast_1d(axes)):
+    styles = series_styles(len(plan.names))
+    for s, ax in enumerate(axes_):
         for o, name in enumerate(plan.names):
-            line, = ax.plot(h, plan.elevation_deg[s, o], label=name)
+            st = styles[o]
+            ax.plot(h, plan.elevation_deg[s, o], label=f"{name}",
+                    **st.line(marker="none"))
             umb = plan.grid_shadow[o] == 2
             if umb.any():
-                ax.axvspan(hg[umb].min(), hg[umb].max(), color=line.get_color(), alpha=0.25)
+                ax.axvspan(hg[umb].min(), hg[umb].max(), color=st.color, alpha=0.2, lw=0)
         dk = plan.dark[s]
-        ax.fill_between(h, 0, 90, where=~dk, color="0.85", step="mid", zorder=0)
-        ax.axhline(cfg.min_elevation_deg, color="0.4", ls=":", lw=1)
-        ax.set_xlabel("UTC (h) on " + plan.t0.datetime.strftime("%Y-%m-%d"))
-        ax.set_title(cfg.stations[s].name)
+        ax.fill_between(h, 0, 90, where=~dk, color="0.88", step="mid", zorder=0,
+                        label="daylight / twilight" if s == 0 else None)
+        ax.axhline(cfg.min_elevation_deg, color="0.3", ls=":", lw=1,
+                   label=f"minimum elevation {cfg.min_elevation_deg:g}°" if s == 0 else None)
+        label_axes(ax, x="UTC on " + plan.t0.datetime.strftime("%Y-%m-%d"), xunit="h",
+                   title=cfg.stations[s].name)
         ax.set_ylim(0, 90)
-    np.atleast_1d(axes)[0].set_ylabel("elevation (°)")
-    np.atleast_1d(axes)[0].legend(fontsize=7, title="NORAD id (umbra shaded)")
+    label_axes(axes_[0], y="elevation", yunit="°")
+    fig = axes_[0].figure
+    fig.suptitle("Elevation of each object over the night (umbra passages shaded)")
+    legend_outside(fig, where="below", ncol=3, title="NORAD id")
     return axes
 
 
@@ -138,52 +157,64 @@ def frame_example(plan: NightPlan, index: int, seed: int = 0) -> dict:
 
 def plot_frame(example: dict, *, ax: plt.Axes | None = None) -> plt.Axes:
     """A frame with its detections: catalogue stars, stars found by their drift, candidates."""
-    ax = _ax(ax, (6, 6))
+    ax = _ax(ax, (6.0, 6.9))
     img = example["image"]
     lo, hi = np.percentile(img, [5, 99.5])
     ax.imshow(img, cmap="gray", vmin=lo, vmax=hi, origin="upper")
     xy, cat, cand = example["xy"], example["catalogue"], example["candidate"]
     mov = ~cat & ~cand
-    ax.scatter(*xy[cat].T, s=60, facecolors="none", edgecolors="tab:blue",
-               label="catalogue star (Gaia)")
-    ax.scatter(*xy[mov].T, s=30, facecolors="none", edgecolors="tab:orange",
-               label="star by sidereal drift / untestable")
-    ax.scatter(*xy[cand].T, s=120, marker="s", facecolors="none", edgecolors="red", lw=1.5,
-               label="target candidate")
+    ax.scatter(*xy[cat].T, s=28, facecolors="none", edgecolors=ON_IMAGE["star"], lw=0.7,
+               marker="o", label=f"catalogue star, Gaia ({int(cat.sum())})")
+    ax.scatter(*xy[mov].T, s=10, color=ON_IMAGE["candidate"], lw=0, marker="o", alpha=0.6,
+               label=f"star by its sidereal drift, or untestable ({int(mov.sum())})")
+    ax.scatter(*xy[cand].T, s=160, marker="s", facecolors="none",
+               edgecolors=ON_IMAGE["target"], lw=1.8, label=f"target candidate ({int(cand.sum())})")
     t = example["target_xy"]
-    ax.plot(*t, "+", color="lime", ms=16, label="true target (SGP4)")
+    ax.plot(*t, "+", color=ON_IMAGE["truth"], ms=18, mew=1.6, ls="none",
+            label="true target (SGP4)")
     d = example["drift"]
     ax.annotate("", xy=(30 + d[0], 30 + d[1]), xytext=(30, 30),
-                arrowprops={"arrowstyle": "-|>", "color": "yellow"})
-    ax.text(30, 45, "star drift / frame", color="yellow", fontsize=7)
-    ax.legend(fontsize=7, loc="lower right")
-    ax.set_xlabel("x (px)")
-    ax.set_ylabel("y (px)")
+                arrowprops={"arrowstyle": "-|>", "color": ON_IMAGE["target"], "lw": 1.5})
+    ax.text(30, 48, "star drift per frame", color=ON_IMAGE["target"], fontsize=9, va="top",
+            bbox={"facecolor": "black", "alpha": 0.6, "lw": 0, "pad": 1.5})
+    ax.grid(False)
+    b = example.get("burst")
+    label_axes(ax, x="x", xunit="px", y="y", yunit="px",
+               title="First frame of a burst and what the chain makes of its detections"
+               + (f"\n(station {b.station + 1}, object {b.obj + 1}, visit {b.visit + 1})"
+                  if b is not None else ""))
+    # a dark legend box: the image's overlay colours are made to show on black
+    legend_outside(ax, where="below", ncol=1, facecolor="0.12", labelcolor="white")
     return ax
 
 
 def plot_budget(result: NightResult, *, axes=None):
     """The error budget: stage fractions (left), errors in km and arcsec (right)."""
     if axes is None:
-        _, axes = plt.subplots(1, 2, figsize=(11, 3.6), gridspec_kw={"width_ratios": [1.2, 1]})
+        _, axes = plt.subplots(1, 2, figsize=(7.4, 3.7), layout="constrained",
+                               gridspec_kw={"width_ratios": [1.25, 1]})
     b = result.budget
-    val = dict(zip(b["stage"] + " · " + b["metric"], b["value"]))
+    val = dict(zip(b["stage"] + " · " + b["metric"], b["value"], strict=False))
     a0, a1 = axes
     names = [lab for _, lab in _FRACTIONS]
     vals = [val.get(k, np.nan) for k, _ in _FRACTIONS]
-    a0.bar(names, vals, color=["#4c78a8", "#72b7b2", "#54a24b", "#eeca3b"])
-    for i, v in enumerate(vals):
-        a0.text(i, (v if np.isfinite(v) else 0) + 0.02, f"{v:.3f}", ha="center", fontsize=8)
-    a0.set_ylim(0, 1.12)
-    a0.set_ylabel("fraction")
-    a0.set_title("detection → initiation → association")
+    for i, (st, v) in enumerate(zip(series_styles(len(vals)), vals, strict=True)):
+        a0.bar(i, v, 0.7, **st.bar())
+        a0.text(i, (v if np.isfinite(v) else 0) + 0.02, f"{v:.3f}", ha="center", fontsize=9)
+    a0.set_xticks(range(len(names)), names)
+    a0.set_ylim(0, 1.15)
+    a0.grid(axis="x", visible=False)
+    label_axes(a0, x="stage", y="fraction of the stage's inputs",
+               title="Detection → initiation → association")
     tri = result.pairs.dropna(subset=["range_err_km"]) if len(result.pairs) else result.pairs
-    a1.hist(tri["range_err_km"] if len(tri) else [], bins=20, color="#4c78a8")
-    a1.set_xlabel("triangulated range − SGP4 range (km)")
-    a1.set_ylabel("pairs")
+    a1.hist(tri["range_err_km"] if len(tri) else [], bins=20,
+            **series_styles(1)[0].bar(hatch=""))
+    label_axes(a1, x="triangulated − SGP4 range", xunit="km", y="associated pairs",
+               title="Triangulation: range error")
     pr = [val.get(f"prediction · {m}: RMS error through the eclipse", np.nan) for m in PREDICTORS]
-    a1.set_title("triangulation; prediction RMS through the eclipse: " +
-                 ", ".join(f"{m} {v:.1f}″" for m, v in zip(PREDICTORS, pr)), fontsize=8)
+    a0.figure.suptitle("Error budget of the night\nprediction RMS through the eclipse: "
+                       + ", ".join(f"{m.upper() if m != 'wransac' else 'WRANSAC'} {v:.1f}″"
+                                   for m, v in zip(PREDICTORS, pr, strict=True)))
     return axes
 
 
@@ -191,32 +222,41 @@ def plot_triangulation(result: NightResult, *, ax: plt.Axes | None = None) -> pl
     """Range error (km) of every associated pair over the night, by object."""
     ax = _ax(ax)
     p = result.pairs.dropna(subset=["range_err_km"]) if len(result.pairs) else result.pairs
+    styles = series_styles(max(1, len(result.plan.names)))
     for o, name in enumerate(result.plan.names):
         sel = p[p["obj_a"] == o] if len(p) else p
         if len(sel):
-            ax.plot(sel["t_s"] / 3600, sel["range_err_km"], "o", ms=4, label=name)
+            ax.plot(sel["t_s"] / 3600, sel["range_err_km"], ms=5, label=name,
+                    **styles[o].line(ls="none"))
     ax.axhline(0, color="0.4", lw=1)
-    ax.set_xlabel("hours since the night's start")
-    ax.set_ylabel("range error (km)")
-    ax.legend(fontsize=7, title="NORAD id")
+    label_axes(ax, x="time since the night's start", xunit="h", y="range error", yunit="km",
+               title="Triangulated range − SGP4 range, every associated pair")
+    legend_outside(ax, title="NORAD id")
     return ax
 
 
 def plot_prediction(prediction: pd.DataFrame, *, ax: plt.Axes | None = None) -> plt.Axes:
-    """RMS prediction error through the eclipse per station/object and predictor (log scale)."""
-    ax = _ax(ax, (8, 3.6))
+    """RMS prediction error through the eclipse per station/object and predictor (linear axis
+    from zero, so bar lengths compare)."""
+    ax = _ax(ax, (7.0, 3.9))
+    title = "Prediction through the eclipse: RMS error per station and object"
     if len(prediction) == 0:
         ax.text(0.5, 0.5, "no prediction (stage failed)", ha="center", transform=ax.transAxes)
+        ax.set_axis_off()
+        ax.set_title(title)
         return ax
     tab = prediction.pivot_table(index=["station", "object"], columns="method",
                                  values="rms_arcsec")[list(PREDICTORS)]
     x = np.arange(len(tab))
+    wd = 0.8 / len(PREDICTORS)
     for i, m in enumerate(PREDICTORS):
-        ax.bar(x + (i - 1) * 0.27, tab[m], 0.27, label=m)
-    ax.set_xticks(x, [f"{s}\n{o}" for s, o in tab.index], fontsize=7)
-    ax.set_yscale("log")
-    ax.set_ylabel("RMS error in umbra (″)")
-    ax.legend(fontsize=7)
+        ax.bar(x + (i - (len(PREDICTORS) - 1) / 2) * wd, tab[m], wd,
+               label=method_style(m).name, **method_style(m).bar())
+    ax.set_xticks(x, [f"{s.split()[0]}\n{o}" for s, o in tab.index])
+    ax.set_ylim(0, None)
+    ax.grid(axis="x", visible=False)
+    label_axes(ax, x="station and NORAD id", y="RMS error in umbra", yunit="″", title=title)
+    legend_outside(ax)
     return ax
 
 
@@ -227,34 +267,49 @@ def _sweep_title(sweep: pd.DataFrame, level: float) -> str:
 
 
 def _draw_sweep(sweep: pd.DataFrame, level: float, axes) -> tuple[list, Any]:
-    """Draw the sweep on ``axes``; return the level markers and the title (to update)."""
-    a0, a1 = axes
+    """Draw the sweep on three axes; return the level markers and the title (to update)."""
+    a0, a1, a2 = axes
     x = np.asarray(sweep.columns, float)
-    for key, lab in _FRACTIONS:
-        a0.plot(x, sweep.loc[key], "o-", label=lab.replace("\n", " "))
+    for (key, lab), st in zip(_FRACTIONS, series_styles(len(_FRACTIONS)), strict=True):
+        a0.plot(x, sweep.loc[key], label=lab.replace("\n", " "), **st.line())
     a0.set_ylim(-0.03, 1.05)
-    a0.set_ylabel("fraction")
-    a1.plot(x, sweep.loc["triangulation · RMS position error"], "s-", color="k",
-            label="triangulation RMS (km)")
+    label_axes(a0, y="fraction", title="Stages: fraction kept")
+    a1.plot(x, sweep.loc["triangulation · RMS position error"], label="triangulation",
+            **series_styles(7)[6].line())
+    label_axes(a1, y="RMS position error", yunit="km", title="Triangulation")
     for m in PREDICTORS:
-        a1.plot(x, sweep.loc[f"prediction · {m}: RMS error through the eclipse"], "o--",
-                label=f"{m} prediction (″)")
-    a1.set_yscale("log")
+        a2.plot(x, sweep.loc[f"prediction · {m}: RMS error through the eclipse"],
+                label=method_style(m).name, **method_style(m).line())
+    label_axes(a2, y="RMS error in umbra", yunit="″", title="Prediction through the eclipse")
     marks = []
     for a in axes:
         a.set_xscale("log")
-        a.set_xlabel("sky background (e⁻/px)")
-        marks.append(a.axvline(level, color="k", ls="--", lw=1))
-        a.legend(fontsize=7)
+        a.xaxis.set_major_formatter(plt.FuncFormatter(lambda v, _p: f"{v:,.0f}"))
+        a.set_xticks(x)
         a.minorticks_off()
-    title = a0.figure.suptitle(_sweep_title(sweep, level), fontsize=9)
+        label_axes(a, x="sky background", xunit="e⁻/px")
+        marks.append(a.axvline(level, color="k", ls="--", lw=1))
+    for a in (a1, a2):
+        vals = np.concatenate([ln.get_ydata() for ln in a.get_lines()[:-1]]).astype(float)
+        if np.isfinite(vals).any() and np.nanmin(vals) > 0:
+            log_axis(a, "y")
+    legend_outside(a0)
+    legend_outside(a2)
+    title = a0.figure.suptitle(_sweep_title(sweep, level))
     return marks, title
 
 
+def _sweep_axes(fig: Figure):
+    gs = fig.add_gridspec(2, 2, height_ratios=[1, 1])
+    return [fig.add_subplot(gs[0, :]), fig.add_subplot(gs[1, 0]), fig.add_subplot(gs[1, 1])]
+
+
 def plot_sweep(sweep: pd.DataFrame, level: float, *, axes=None):
-    """The chain against the sky level: fractions (left) and errors (right); ``level`` marked."""
+    """The chain against the sky level: fractions (top), triangulation error in km and
+    prediction error in ″ (bottom, each on its own labelled axis); ``level`` marked."""
     if axes is None:
-        _, axes = plt.subplots(1, 2, figsize=(10, 3.6), dpi=90, layout="constrained")
+        fig = plt.figure(figsize=(7.4, 6.0), layout="constrained")
+        axes = _sweep_axes(fig)
     _draw_sweep(sweep, level, axes)
     return axes
 
@@ -290,8 +345,8 @@ def sweep_explorer(sweep: pd.DataFrame) -> Callable[[float], Figure]:
         if level not in levels:
             raise ValueError(f"sky must be one of the sweep's sky levels {levels}, got {sky}")
         if not state:
-            fig = Figure(figsize=(10, 3.6), dpi=90, layout="constrained")
-            axes = fig.subplots(1, 2)
+            fig = Figure(figsize=(7.4, 6.0), layout="constrained")
+            axes = _sweep_axes(fig)
             state["marks"], state["title"] = _draw_sweep(sweep, level, axes)
             fig.draw_without_rendering()
             fig.set_layout_engine("none")  # keep the constrained positions: no re-layout
