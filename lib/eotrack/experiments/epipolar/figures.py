@@ -369,6 +369,12 @@ def plot_fig4(scenario: Scenario, obs: Observation, matches, *, fig=None):
         ax.set_yticks([])
         ax.grid(False)
         ax.set_title(f"Fig. {lab[:4]} — map {a + 1} | map {b + 1}", fontsize=9)
+        if not np.any(scenario.visible[a] & scenario.visible[b]):
+            note = (f"maps {a + 1} and {b + 1} share no object:\n"
+                    + ("no association (as in the paper)" if not len(pairs) else
+                       f"all {len(pairs)} line(s) here are false"))
+            ax.text(w + 10, h / 2, note, ha="center", va="center", fontsize=9,
+                    bbox={"fc": "white", "ec": "0.5", "alpha": 0.9})
     fig.tight_layout()
     return fig
 
@@ -402,8 +408,12 @@ def plot_fig6(running: dict, analytic: dict, paper: dict | None = None, *, ax=No
         ax.axhline(100 * analytic[L], color=col, ls="--", lw=0.8)
     if paper is not None:
         n = paper["n_simulations"]
-        paper_marker(ax, [n] * len(paper["max_false_rate"]),
-                     100 * np.asarray(paper["max_false_rate"]))
+        vals = 100 * np.asarray(paper["max_false_rate"])
+        paper_marker(ax, [n] * len(vals), vals, label="paper (one per L)")
+        for i, (Lp, v) in enumerate(zip(paper["threshold_px"], vals)):
+            ax.annotate(f"paper, L = {Lp:g}", (n, v), xytext=(-8, 0),
+                        textcoords="offset points", ha="right", va="center", fontsize=9,
+                        color=f"C{i}")
     ax.set_xlabel("number of simulations")
     ax.set_ylabel("max. false-association rate (%)")
     ax.set_title(title)
@@ -436,15 +446,24 @@ def plot_fig8(scenario: Scenario, estimates: dict[str, dict], *, ax=None):
 
 
 
-def plot_gate_study(df: pd.DataFrame, *, ax=None):
-    """Best threshold and error-budget gate versus attitude error."""
+def plot_gate_study(df: pd.DataFrame, *, ax=None, reading: str | None = None):
+    """Best threshold and error-budget gate versus attitude error.
+
+    ``reading`` ("bound" or "rms") says how the attitude figure is read; by default it comes
+    from ``df.attrs["reading"]`` (set by :func:`~.trials.gate_study`).
+    """
+    reading = reading if reading is not None else df.attrs.get("reading", "bound")
+    if reading not in ("bound", "rms"):
+        raise ValueError(f"reading must be 'bound' or 'rms', got {reading!r}")
     ax = get_ax(ax, figsize=(5.5, 3.6))
     gate_col = next(c for c in df.columns if c.startswith("gate"))
     ax.plot(df["attitude (′)"], df["best L (px)"], "o-", label="best L (min. total error)")
     ax.plot(df["attitude (′)"], df[gate_col], "s--", label=gate_col)
     ax.axhspan(8, 12, color="0.85", zorder=0, label="paper: 8–12 px")
-    ax.set_xlabel("attitude error bound per angle (arcmin)")
+    what = "uniform bound" if reading == "bound" else "rms"
+    ax.set_xlabel(f"attitude error per angle, {what} (arcmin)")
     ax.set_ylabel("threshold (px)")
+    ax.set_title(f"Best L and error-budget gate, attitude error read as {what}", fontsize=10)
     ax.legend(fontsize=8)
     return ax
 

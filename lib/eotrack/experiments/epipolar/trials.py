@@ -522,7 +522,9 @@ def gate_study(scenario: Scenario, attitudes_arcmin=(0.25, 0.5, 1.0, 2.0, 3.0), 
                      "total error at best L": sw.error_rate[i],
                      "total error at gate": float(np.interp(gate, th, sw.error_rate)),
                      "correct at gate": float(np.interp(gate, th, sw.accuracy))})
-    return pd.DataFrame(rows)
+    out = pd.DataFrame(rows)
+    out.attrs["reading"] = "rms" if gaussian else "bound"
+    return out
 
 
 
