@@ -21,13 +21,13 @@ EXPECTED = {
     "wransac.fig1": Status.REPRODUCED,
     "wransac.fig2": Status.REPRODUCED,
     "wransac.min_samples": Status.REPRODUCED,
-    "wransac.table1": Status.PARTIAL,
-    "wransac.short_horizon": Status.NOT_REPRODUCED,
-    "wransac.long_horizon": Status.PARTIAL,
+    "wransac.table1": Status.CONTRADICTED,
+    "wransac.short_horizon": Status.CONTRADICTED,
+    "wransac.long_horizon": Status.CONTRADICTED,
     "wransac.fig4": Status.REPRODUCED,
     "wransac.fig5": Status.REPRODUCED,
     "wransac.fig6": Status.NOT_REPRODUCED,
-    "wransac.fig7": Status.PARTIAL,
+    "wransac.fig7": Status.NOT_REPRODUCED,
 }
 
 
@@ -75,6 +75,44 @@ def test_core_numbers(rep):
     budget = rep.data["budget"]
     assert budget["ransac"].iloc[0] < budget["ransac"].iloc[-1]
     assert len(rep.data["generalisation"]) >= 4
+
+
+def test_statistics_rules(rep):
+    """Comparative claims: paired runs, an interval on every compared quantity, >= 20 runs,
+    a family-wise (Bonferroni) interval over the two coordinates compared."""
+    from eotrack.experiments.wransac.claims import FAMILY_LEVEL, measure
+
+    claims = load_claims("wransac")
+    res = rep.data["results"]
+    assert res.n_runs >= 20 * 15  # 15 disjoint blocks of the paper's 20 runs
+    ms = measure(claims, res, rep.data["correlations"])
+    for cid in ("wransac.table1", "wransac.short_horizon", "wransac.long_horizon"):
+        assert claims[cid].directional
+        cis = ms[cid]["ratio_ci"]
+        assert set(cis) == {"ra", "dec"}
+        for co, (lo, hi) in cis.items():
+            r = ms[cid]["_ratio"][co][0]
+            assert lo <= r <= hi
+            # Bonferroni: each coordinate's interval is wider than its plain 95 % interval
+            _, lo95, hi95 = W.variance_ratio(res, "wransac", "ransac", co,
+                                             72 if cid != "wransac.short_horizon" else 15)
+            assert lo <= lo95 and hi >= hi95
+    assert FAMILY_LEVEL == 0.95
+    # the central claims exist and are results
+    central = [c for c in claims.values() if c.central]
+    assert {c.id for c in central} == {"wransac.table1", "wransac.long_horizon"}
+    assert all(c.kind == "result" for c in central)
+
+
+def test_seed_changes_draws_not_statuses_logic():
+    cfg = W.WransacConfig()
+    assert W.root_config(cfg, None) is cfg
+    a, b = W.root_config(cfg, 1), W.root_config(cfg, 2)
+    assert a.seed != b.seed != cfg.seed and W.root_config(cfg, 1).seed == a.seed
+    with pytest.raises(ValueError, match="seed must be a non-negative int"):
+        W.root_config(cfg, -1)
+    with pytest.raises(ValueError, match="seed must be a non-negative int"):
+        W.root_config(cfg, "1")
 
 
 def test_paired_runs_share_data_and_hypotheses():

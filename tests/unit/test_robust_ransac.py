@@ -8,6 +8,7 @@ from eotrack.robust import (
     draw_samples,
     fit_free_sinusoid,
     fit_linear,
+    get_loss,
     predict_linear,
     ransac,
     ransac_linear,
@@ -137,3 +138,26 @@ def test_models_bad_input():
         predict_linear(SinusoidDrift(), np.zeros(3), T)
     with pytest.raises(ValueError, match="need at least 4 points"):
         fit_free_sinusoid(T[:3], T[:3])
+
+
+@pytest.mark.parametrize("loss", ["msac", "msac_squared", "sinusoidal"])
+@pytest.mark.parametrize("order", [(0, 1), (1, 0)])
+def test_selects_minimum_cost_not_largest_inlier_set(loss, order):
+    """With a graded loss the best hypothesis is the one of least cost Σ L(e), which here has
+    fewer inliers than the other (a mutation keeping the largest inlier set fails this)."""
+    # constant model, t = 1: hypothesis B (c = 0) has 11 inliers and a small cost; hypothesis A
+    # (c = 0.9) has all 13 points within t but large residuals on ten of them
+    y = np.r_[0.9, np.zeros(10), 1.5, 1.5]
+    x = np.arange(len(y), dtype=float)
+    model = Polynomial(0, t_ref_s=0.0)
+    samples = np.array([[0], [1]])[list(order)]
+    fit = ransac_linear(model, x, y, threshold=1.0, n_hypotheses=2,
+                        rng=np.random.default_rng(0), loss=loss, samples=samples)
+    assert fit.hypothesis_params[0] == pytest.approx(0.0)
+    assert fit.n_inliers == 11
+    costs = {c: get_loss(loss)(y - c, 1.0).sum() for c in (0.0, 0.9)}
+    assert fit.cost == pytest.approx(costs[0.0]) and costs[0.0] < costs[0.9]
+    # with the 0-1 loss, minimum cost *is* the largest inlier set: hypothesis A
+    zo = ransac_linear(model, x, y, threshold=1.0, n_hypotheses=2,
+                       rng=np.random.default_rng(0), loss="zero_one", samples=samples)
+    assert zo.hypothesis_params[0] == pytest.approx(0.9) and zo.n_inliers == 13

@@ -281,8 +281,10 @@ def plot_budget(errors: np.ndarray, budgets: tuple[int, ...], methods: tuple[str
 def plot_threshold_sensitivity(df: pd.DataFrame, *, ax: plt.Axes | None = None) -> plt.Axes:
     """RMS 72-min error versus t/σ per loss."""
     ax = get_ax(ax)
-    for c in df.columns:
-        ax.plot(df.index, df[c], "o-", label=c)
+    for k, c in enumerate(df.columns):
+        weighted = "weighted" in c
+        ax.plot(df.index, df[c], "s--" if weighted else "o-", color="k" if weighted else f"C{k}",
+                label=c)
     ax.set_yscale("log")
     ax.set(xlabel="threshold t / σ", ylabel="median RMS 72-min error (arcsec)",
            title="Threshold sensitivity (beyond the paper)")

@@ -56,17 +56,21 @@ def _run_sums(e: np.ndarray) -> tuple[np.ndarray, np.ndarray, int]:
 
 def variance_ratio(res: PredictionResults, num: str, den: str = "ransac", coord: str = "dec",
                    horizon_min: float = 72, *, n_boot: int | None = None,
-                   rng: np.random.Generator | None = None) -> tuple[float, float, float]:
-    """Paired ratio of pooled prediction-error variances, with a 95 % bootstrap interval.
+                   rng: np.random.Generator | None = None, level: float = 0.95
+                   ) -> tuple[float, float, float]:
+    """Paired ratio of pooled prediction-error variances, with a bootstrap interval.
 
     The runs are resampled with replacement (the same resampled runs for both methods, which
-    keeps the pairing); percentile interval.
+    keeps the pairing); percentile interval at ``level`` (0.95 by default; 0.975 for a
+    family-wise 95 % over two coordinates, Bonferroni).
 
     Returns
     -------
     ratio, lo, hi
     """
     b = res.config.n_bootstrap if n_boot is None else check_int(n_boot, "n_boot", min_value=10)
+    if isinstance(level, bool) or not isinstance(level, int | float) or not 0.5 <= level < 1:
+        raise ValueError(f"level must be a number in [0.5, 1), got {level!r}")
     rng = rng if rng is not None else np.random.default_rng(res.config.seed + 7)
     check_generator(rng)
     a1, a2, k = _run_sums(res.method_errors(num, coord, horizon_min))
@@ -80,7 +84,8 @@ def variance_ratio(res: PredictionResults, num: str, den: str = "ransac", coord:
     counts = rng.multinomial(r, np.full(r, 1.0 / r), size=b).astype(float)
     nn = counts.sum(1) * k
     boot = var(counts @ a1, counts @ a2, nn) / var(counts @ b1, counts @ b2, nn)
-    lo, hi = np.percentile(boot, [2.5, 97.5])
+    tail = 50.0 * (1.0 - level)
+    lo, hi = np.percentile(boot, [tail, 100.0 - tail])
     return float(full), float(lo), float(hi)
 
 

@@ -365,19 +365,25 @@ def run_prediction_experiment(config: WransacConfig | None = None, *,
 # sweeps beyond the paper
 
 
+#: The threshold study's columns: scoring loss (all with the OLS refit on the inliers), then
+#: WRANSAC (sinusoidal scoring *and* the weighted refit) — the loss and the refit apart.
+SENSITIVITY_WRANSAC = "WRANSAC (L_s + weighted refit)"
+
+
 def _sensitivity_trial(rng: np.random.Generator, t_obs: np.ndarray, truth_obs: np.ndarray,
                        t_pred: np.ndarray, truth_pred: np.ndarray, cfg: WransacConfig,
-                       ratios: tuple[float, ...], losses: tuple[str, ...], n_hyp: int) -> np.ndarray:
+                       ratios: tuple[float, ...], losses: tuple[str, ...], n_hyp: int,
+                       with_wransac: bool) -> np.ndarray:
     y, _ = simulate_observations(rng, truth_obs[1], cfg.sigma_arcsec, cfg.outlier_fraction,
                                  cfg.gross_error_arcsec, cfg.inlier_noise, cfg.student_nu)
     idx = draw_samples(rng, len(t_obs), 4, n_hyp)
-    out = np.empty((len(ratios), len(losses)))
+    cols = [("ransac", ls) for ls in losses] + ([("wransac", None)] if with_wransac else [])
+    out = np.empty((len(ratios), len(cols)))
     for i, k in enumerate(ratios):
-        for j, ls in enumerate(losses):
-            meth = "wransac" if ls == "sinusoidal" else "ransac"
+        for j, (meth, ls) in enumerate(cols):
             pred = fit_predict(meth, t_obs, y, t_pred, rng=rng, threshold=k * cfg.sigma_arcsec,
-                               n_hypotheses=n_hyp, loss=None if meth == "wransac" else ls,
-                               samples=idx, weighting=cfg.weighting)
+                               n_hypotheses=n_hyp, loss=ls, samples=idx,
+                               weighting=cfg.weighting)
             out[i, j] = np.sqrt(np.mean((pred - truth_pred[1]) ** 2))
     return out
 
@@ -387,16 +393,21 @@ def threshold_sensitivity(config: WransacConfig | None = None, *, scenario: Scen
                           losses: tuple[str, ...] = ("zero_one", "msac", "msac_squared",
                                                      "sinusoidal"),
                           n_runs: int = 100, n_hypotheses: int | None = None,
-                          runner: TrialRunner | None = None) -> pd.DataFrame:
-    """RMS 72-min prediction error (Dec) versus threshold t/σ for each loss (paired draws).
+                          runner: TrialRunner | None = None, with_wransac: bool = True
+                          ) -> pd.DataFrame:
+    """RMS 72-min prediction error (Dec) versus threshold t/σ, the scoring loss and the refit apart.
 
-    The paper argues that L_s makes RANSAC "less sensitive to the threshold"; this measures it.
-    The weighted refit goes with the sinusoidal loss.
+    The paper argues that L_s makes RANSAC "less sensitive to the threshold". WRANSAC changes
+    two things at once — the scoring loss and the refit — so each loss of ``losses`` is run
+    with the *same* OLS refit on its inliers (only the choice of hypothesis differs), and, with
+    ``with_wransac``, a last column :data:`SENSITIVITY_WRANSAC` adds the weighted refit.
+    Every column of a run sees the same data and the same minimal samples.
 
     Returns
     -------
     pandas.DataFrame
-        Median over runs of the RMS error (arcsec), index t/σ, one column per loss.
+        Median over runs of the RMS error (arcsec), index t/σ; columns ``"<loss> + OLS refit"``
+        per loss, then :data:`SENSITIVITY_WRANSAC`.
     """
     cfg = config or WransacConfig()
     sc = scenario or make_scenario(cfg)
@@ -406,9 +417,12 @@ def threshold_sensitivity(config: WransacConfig | None = None, *, scenario: Scen
     n_hyp = cfg.n_draws if n_hypotheses is None else n_hypotheses
     res = runner.map(_sensitivity_trial, n_runs, seed=cfg.seed + 1,
                      args=(sc.t_obs_s, sc.truth_obs, sc.t_pred_s, sc.truth_pred, cfg,
-                           tuple(ratios), tuple(losses), n_hyp), desc="threshold sweep")
+                           tuple(ratios), tuple(losses), n_hyp, bool(with_wransac)),
+                     desc="threshold sweep")
     med = np.median(np.stack(res), axis=0)
-    return pd.DataFrame(med, index=pd.Index(ratios, name="t/sigma"), columns=list(losses))
+    cols = [f"{ls} + OLS refit" for ls in losses] + ([SENSITIVITY_WRANSAC] if with_wransac
+                                                     else [])
+    return pd.DataFrame(med, index=pd.Index(ratios, name="t/sigma"), columns=cols)
 
 
 def _budget_trial(rng: np.random.Generator, t_obs: np.ndarray, truth_obs: np.ndarray,
@@ -460,5 +474,6 @@ __all__ += [
     "ALL_METHODS",
     "MAIN_METHODS",
     "NOISE_MODELS",
+    "SENSITIVITY_WRANSAC",
     "student_t_efficiency",
 ]
