@@ -60,3 +60,27 @@ def test_bad_input():
         tile_background_noise(img, 2)
     with pytest.raises(ValueError, match="image"):
         cfar_segment(np.full((8, 8), np.nan), 0.03)
+
+
+# ---------------------------------------------------------------- held-out scenes
+def _measured_pf(shape, clutter, scale, p_f, *, tile=16, seed=7):
+    from eotrack.imaging.dim_targets import DimSequenceConfig, simulate_dim_sequence
+
+    cfg = DimSequenceConfig(shape=shape, n_frames=6, clutter_sigma=float(clutter),
+                            clutter_scale_px=float(scale), targets=())
+    seq = simulate_dim_sequence(cfg, np.random.default_rng(seed))
+    g = np.stack([cfar_segment(im, p_f, tile=tile) for im in seq.images])
+    return float(g[:, 8:-8, 8:-8].mean())
+
+
+@pytest.mark.parametrize("shape", [(200, 150), (96, 320)])  # not multiples of the 16-px tile
+@pytest.mark.parametrize("p_f", [0.01, 0.03, 0.1])
+def test_held_out_pf_within_range_for_smooth_clutter(shape, p_f):
+    """Operating range: clutter sigma <= noise sigma, scale >= 2 tiles -> P_F within 15 %."""
+    assert _measured_pf(shape, 10, 40, p_f) / p_f == pytest.approx(1.0, abs=0.15)
+
+
+def test_held_out_pf_outside_range_for_rough_clutter():
+    """Clutter finer than a tile (8 px < 16 px) or 6x the noise: the rate is too high."""
+    assert _measured_pf((200, 150), 30, 8, 0.03) / 0.03 > 1.1
+    assert _measured_pf((200, 150), 60, 24, 0.003) / 0.003 > 1.5

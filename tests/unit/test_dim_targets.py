@@ -96,3 +96,15 @@ def test_bad_input():
         peak_snr_for_pixel_pd(0.9, 0.03, 1.0, size=2)
     with pytest.raises(ValueError, match="fwhm_px"):
         fwhm_to_sigma(0.0)
+
+
+def test_held_out_peak_snr_other_size_and_pf():
+    """A 5x5 core of a FWHM-5 spot at P_F 0.003 (neither is the paper's): the solved peak SNR
+    gives the wanted mean detection rate in simulated white noise."""
+    sig = fwhm_to_sigma(5.0)
+    a = peak_snr_for_pixel_pd(0.9, 0.003, sig, 5)
+    k = np.arange(-2, 3)
+    g = np.exp(-0.5 * np.add.outer(k ** 2, k ** 2) / sig ** 2)
+    rng = np.random.default_rng(3)
+    x = rng.standard_normal((40_000, 5, 5)) + a * g
+    assert (x > norm.isf(0.003)).mean() == pytest.approx(0.9, abs=0.005)

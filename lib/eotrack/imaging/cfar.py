@@ -8,6 +8,14 @@ threshold is set so that a pixel of Gaussian noise exceeds it with probability `
 
 A few bright pixels (targets, stars) barely move a median, so the estimate is not pulled up by
 what one wants to detect.
+
+Operating range (held-out tests in ``tests/unit/test_cfar.py``): on images of any size (tiles
+need not divide it) with background clutter no stronger than the noise and smoother than two
+tiles, the measured false-alarm rate is within 15 % of ``p_f`` for ``p_f`` in [0.01, 0.1].
+Clutter finer than a tile or several times the noise leaks through the mesh: the rate rises
+(≈ 1.2× at 3× noise with 8-px clutter and ``p_f`` = 0.03; ≈ 2× at 6× noise and
+``p_f`` = 0.003). Per-tile estimates also err together over a tile, so false pixels cluster
+more than independent ones (see :mod:`eotrack.tracking.hypothesis`).
 """
 
 from __future__ import annotations

@@ -21,7 +21,26 @@ Conventions adopted (see the notebook's errata):
   (``p1_paper`` returns the unclipped value) and :func:`area_detection_exact` gives the exact count,
   a sum of ``Binomial(T_S, P_D)`` and ``Binomial(W_S − T_S, P_F)``;
 * the SNR → P_D link the paper leaves implicit is Gaussian noise with a threshold set by P_F:
-  ``P_D = Q(Q⁻¹(P_F) − SNR)`` (:func:`snr_to_pd`).
+  ``P_D = Q(Q⁻¹(P_F) − SNR)`` (:func:`snr_to_pd`);
+* a real spot's pixels differ: :func:`area_detection_pixels` is the exact count with one
+  probability per target pixel (Poisson-binomial plus binomial).
+
+Operating range (held-out tests in ``tests/unit/test_hypothesis.py``, ``test_cfar.py``,
+``test_neighbourhood.py``, on scenes the paper did not use):
+
+* the formulas are exact for independent pixels (Monte Carlo agreement on 5 × 5 and 7 × 7
+  windows, equal and unequal target pixels);
+* on CFAR-segmented images eq. (4) at the *measured* ``P_F`` holds for the first tail points
+  (``S ≤ 2``); further out it holds only if the background/noise estimate is good (global or
+  coarse tiles): with 16-px tiles at ``P_F`` = 0.003 the ``S = 3`` tail is about twice eq. (4),
+  because the threshold errs together over a tile; correlated clutter does the same (the
+  reproduction's ``P_FA`` table);
+* eqs. (9), (12), (13) assume a gate that stays on its target. With the nearest-neighbour
+  initiator (``TemporalContinuityInitiator``, gate centred on the last point until three hits)
+  a target is followed only if it moves at most about ``n_k`` px per frame (gate ``2 n_k + 1``):
+  with the paper's 3 × 3 gate 1 px/frame is tracked and 3 px/frame is lost; a 5 × 5 gate
+  tracks 3 px/frame. Among dense false alarms (``P_F`` ≳ 0.03 in the gate) the gate is lured
+  away, so the true-track rate falls below eq. (13).
 """
 
 from __future__ import annotations
