@@ -21,6 +21,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from eotrack.montecarlo import TrialRunner
+from eotrack.plotting import FIG_WIDTH_IN
 from eotrack.repro import Reproduction, load_claims
 
 from .claims import (
@@ -185,7 +186,7 @@ def reproduce(*, quick: bool = False, runner: TrialRunner | None = None,
     figs = {"fig4_position_error": figure_errors(df, "pos", methods),
             "fig5_attitude_error": figure_errors(df, "att", methods)}
     c6 = claims["ransac_crlb_pose.fig6"].paper
-    fig, ax = plt.subplots(figsize=(7, 4))
+    fig, ax = plt.subplots(figsize=(FIG_WIDTH_IN, 4.4))
     plot_selected_fraction(df6, (primary, "sandwich", "as printed"), c6["selected_fraction"],
                            tuple(c6["fraction_range"]), ax=ax)
     figs["fig6_selected_points"] = fig

@@ -14,6 +14,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.ticker import NullLocator
 
+from eotrack.plotting import FIG_WIDTH_IN
 from eotrack.pose import ransac_pose_dlt, refine_pose
 from eotrack.repro import load_claims
 from eotrack.validation import check_choice, check_int, check_positive
@@ -98,7 +99,7 @@ def explore_figure(reading: str = "pooled", noise_unit_mm: float = 1.0,
         else Settings().tolerance
     runs = explore_runs(noise_unit_mm)
     att, frac = explore_selection(noise_unit_mm, reading, tol)
-    fig, (a1, a2) = plt.subplots(1, 2, figsize=(10, 3.8), width_ratios=[2, 1])
+    fig, (a1, a2) = plt.subplots(2, 1, figsize=(FIG_WIDTH_IN, 6.6), height_ratios=[1.4, 1])
     if not runs:
         a1.text(0.5, 0.5, "RANSAC failed in every run", ha="center", transform=a1.transAxes)
         return fig
@@ -114,15 +115,16 @@ def explore_figure(reading: str = "pooled", noise_unit_mm: float = 1.0,
     a1.set_yscale("log")
     a1.yaxis.set_minor_locator(NullLocator())   # fewer ticks: the inline PNG renders faster
     a1.set_ylabel("attitude error (deg)")
+    a1.set_xlabel("method (a faint line joins one run's errors)")
     ratio = att.mean() / cols[0].mean()
     a1.set_title(f"{len(runs)} runs (reduced from 300 for speed); mean ratio vs RANSAC "
-                 f"{ratio:.2f}", fontsize=9)
+                 f"{ratio:.2f}")
     a2.hist(frac, bins=np.linspace(0, 1, 21), color="C1")
     paper = load_claims(SLUG)["ransac_crlb_pose.fig6"].paper["selected_fraction"]
     a2.axvline(paper, color="k", ls="--", lw=1)
     a2.set_xlabel(f"selected / inliers (dashed: paper ≈ {paper:.2f})")
     a2.set_ylabel("runs")
-    a2.set_title(f"kept {frac.mean():.2f} of the inliers on average", fontsize=9)
+    a2.set_title(f"kept {frac.mean():.2f} of the inliers on average")
     # fixed margins: tight_layout would cost more than half of the redraw time
-    fig.subplots_adjust(left=0.08, right=0.98, bottom=0.14, top=0.9, wspace=0.28)
+    fig.subplots_adjust(left=0.12, right=0.97, bottom=0.09, top=0.94, hspace=0.5)
     return fig

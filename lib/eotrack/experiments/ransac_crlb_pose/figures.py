@@ -9,12 +9,22 @@ import numpy as np
 import pandas as pd
 from matplotlib.ticker import MaxNLocator
 
-from eotrack.plotting import get_ax
+from eotrack.plotting import (
+    FIG_WIDTH_IN,
+    get_ax,
+    legend_outside,
+    log_axis,
+    method_style,
+    series_styles,
+)
 from eotrack.validation import check_choice
+
+from .scenario import READINGS
 
 __all__ = [
     "draw_scene_3d",
     "figure_errors",
+    "method_line",
     "plot_budget",
     "plot_crlb_ellipsoid",
     "plot_efficiency",
@@ -28,6 +38,23 @@ _QTY = {"pos": ("position error |t̂ − t| (m)", "Fig. 4", "position"),
         "att": ("attitude error, angle of R̂Rᵀ (deg)", "Fig. 5", "attitude")}
 
 
+def _reading_styles() -> dict:
+    """One fixed style per reading (colour, line style, marker), none like RANSAC's or ML's."""
+    taken = {method_style("ransac").color, method_style("ml").color}
+    pool = [st for st in series_styles(10) if st.color not in taken]
+    return dict(zip(READINGS, pool))
+
+
+def method_line(m: str) -> dict:
+    """``ax.plot`` keywords of a method: RANSAC and ML from the house registry, each reading
+    of the §2.4 rule its own colour + line style + marker (the same in every figure)."""
+    if m == "ransac":
+        return method_style("ransac").line()
+    if m == "ml":
+        return method_style("ml").line()
+    return _reading_styles()[m].line()
+
+
 def _label(m: str) -> str:
     return {"ransac": "RANSAC\nonly", "ml": "ML\n(weighted,\nreference)"}.get(
         m, "+ CRLB\n" + m.replace(" (", "\n("))
@@ -35,15 +62,14 @@ def _label(m: str) -> str:
 
 def plot_error_distribution(df: pd.DataFrame, quantity: str = "att",
                             methods: tuple[str, ...] = ("ransac", "pooled"), ax=None,
-                            paper_note: str = "the paper's curves were images (lost): "
-                                              "no paper values"):
+                            paper_note: str = "paper's curves lost"):
     """Figs. 4/5 as distributions: a box per method, each run a faint line across the boxes.
 
     The faint lines join the same run's errors, so a reader sees both the spread over runs and
     the paired change that the Wilcoxon test uses.
     """
     check_choice(quantity, "quantity", list(_QTY))
-    ax = get_ax(ax, figsize=(7, 4))
+    ax = get_ax(ax, figsize=(FIG_WIDTH_IN, 4.2))
     ok = df[df["success"]]
     data = [ok[f"{quantity}_{m}"].to_numpy() for m in methods]
     x = np.arange(1, len(methods) + 1)
@@ -53,11 +79,11 @@ def plot_error_distribution(df: pd.DataFrame, quantity: str = "att",
                meanprops={"marker": "D", "markerfacecolor": "w", "markeredgecolor": "k"},
                flierprops={"markersize": 2})
     ax.set_xticks(x, [_label(m) for m in methods])
-    ax.set_yscale("log")
+    log_axis(ax, "y")
     ylab, fig_no, word = _QTY[quantity]
     ax.set_ylabel(ylab)
-    ax.set_title(f"{fig_no} — {word} error over {len(ok)} runs (◇ mean; {paper_note})",
-                 fontsize=9)
+    ax.set_xlabel("method (a faint line joins one run's errors)")
+    ax.set_title(f"{fig_no} — {word} error, {len(ok)} runs (◇ mean; {paper_note})")
     return ax
 
 
@@ -65,27 +91,28 @@ def plot_error_ecdf(df: pd.DataFrame, quantity: str = "att",
                     methods: tuple[str, ...] = ("ransac", "pooled"), ax=None):
     """Empirical CDF of the per-run error for each method (log x)."""
     check_choice(quantity, "quantity", list(_QTY))
-    ax = get_ax(ax, figsize=(6, 4))
+    ax = get_ax(ax, figsize=(FIG_WIDTH_IN, 4.2))
     ok = df[df["success"]]
     for m in methods:
         v = np.sort(ok[f"{quantity}_{m}"].to_numpy())
-        ax.step(v, np.arange(1, len(v) + 1) / len(v), where="post",
-                label=_label(m).replace("\n", " "))
-    ax.set_xscale("log")
+        ax.step(v, np.arange(1, len(v) + 1) / len(v), where="post", lw=1.3,
+                markevery=max(1, len(v) // 8), ms=5, label=_label(m).replace("\n", " "),
+                **method_line(m))
+    log_axis(ax, "x")
     ax.set_xlabel(_QTY[quantity][0])
     ax.set_ylabel("fraction of runs ≤ x")
-    ax.set_title("ECDF (left/up = more accurate)", fontsize=9)
-    ax.legend(fontsize=7, loc="lower right")
+    ax.set_title("ECDF of the same runs (left/up = more accurate)")
+    legend_outside(ax, where="below", ncol=3)
     return ax
 
 
 def figure_errors(df: pd.DataFrame, quantity: str = "att",
                   methods: tuple[str, ...] = ("ransac", "pooled")):
     """Box plot with per-run lines (left) and ECDF (right) for Fig. 4 or Fig. 5."""
-    fig, (a1, a2) = plt.subplots(1, 2, figsize=(11, 4.2), width_ratios=[1.2, 1])
+    fig, (a1, a2) = plt.subplots(2, 1, figsize=(FIG_WIDTH_IN, 8.2), height_ratios=[1.15, 1],
+                                 layout="constrained")
     plot_error_distribution(df, quantity, methods, ax=a1)
     plot_error_ecdf(df, quantity, methods, ax=a2)
-    fig.tight_layout()
     return fig
 
 
@@ -93,7 +120,7 @@ def plot_selected_fraction(df: pd.DataFrame, readings: tuple[str, ...] = ("poole
                            paper_fraction: float = 2 / 3,
                            fraction_range: tuple[float, float] = (0.55, 0.8), ax=None):
     """Fig. 6 as a distribution: selected / inliers per run for each reading, paper's value."""
-    ax = get_ax(ax, figsize=(7, 4))
+    ax = get_ax(ax, figsize=(FIG_WIDTH_IN, 4.2))
     ok = df[df["success"]]
     data = [(ok[f"n_{r}"] / ok["n_inliers"]).to_numpy() for r in readings]
     x = np.arange(1, len(readings) + 1)
@@ -105,11 +132,11 @@ def plot_selected_fraction(df: pd.DataFrame, readings: tuple[str, ...] = ("poole
     for xi, d in zip(x, data):
         ax.plot(xi + jit, d, ".", ms=3, color="0.3", alpha=0.5)
     ax.set_xticks(x, [r.replace(" (", "\n(") for r in readings])
+    ax.set_xlabel("reading of the §2.4 rule")
     ax.set_ylabel("selected points / RANSAC inliers")
     ax.set_ylim(0, 1.05)
-    ax.set_title(f"Fig. 6 — share of inliers kept, {len(ok)} runs (one dot per run)",
-                 fontsize=9)
-    ax.legend(fontsize=7, loc="lower left")
+    ax.set_title(f"Fig. 6 — share of inliers kept, {len(ok)} runs (one dot per run)")
+    legend_outside(ax, where="below")
     return ax
 
 
@@ -215,9 +242,10 @@ def plot_efficiency(df: pd.DataFrame, ax=None):
         ax.loglog(x, g["pos RMS / CRLB"], "s--", color=line.get_color(),
                   label=f"{name}: position")
     ax.axhline(1.0, color="k", lw=0.8)
-    ax.set_xlabel("noise unit (mm): 1 = variances in mm² as printed, 0.01 = px² (10 µm pixel)")
+    log_axis(ax, "both")
+    ax.set_xlabel("noise unit (mm): 1 = as printed, 0.01 = 10 µm pixel")
     ax.set_ylabel("RMS error / √CRLB")
-    ax.legend(fontsize=7)
+    legend_outside(ax, where="below", ncol=2)
     ax.set_title("Estimator efficiency")
     return ax
 
@@ -227,6 +255,7 @@ def plot_budget(df: pd.DataFrame, ax=None):
     ax = get_ax(ax)
     for method, g in df.groupby("method"):
         ax.loglog(g["k"], g["att_median_deg"], "o-", label=method)
+    log_axis(ax, "both")
     ax.set_xlabel("number of points k")
     ax.set_ylabel("median attitude error (deg)")
     ax.set_title("Budgeted selection: best k points vs random k (pixel reading)")
