@@ -32,6 +32,10 @@ def main(argv: list[str] | None = None) -> int:
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+
+    from eotrack.plotting import use_house_style
+
+    use_house_style()  # the REPORT figures in the notebooks' house style
     import pandas as pd
 
     from eotrack.montecarlo import TrialRunner
