@@ -116,3 +116,37 @@ def test_bad_inputs():
     with pytest.raises(ValueError, match="behind the camera"):
         set_score(X, R0, [0, 0, -10.0], K0, rule="exact", sigma_px=sig)
     assert project_points(X, R0, T0, K0).shape == (20, 2)
+
+
+def test_scaled_weights_make_the_score_unit_free():
+    """Unit weights add m² to quaternion²; scaled weights give the same selection in any unit."""
+    from eotrack.pose import (
+        attitude_matrix,
+        intrinsic_matrix,
+        scaled_crlb_weights,
+        score_shares,
+        set_score,
+    )
+
+    rng = np.random.default_rng(3)
+    X = rng.uniform(-1, 1, (40, 3))
+    R, t, K = attitude_matrix([10, 20, 30]), np.array([0.5, -0.3, 9.0]), intrinsic_matrix(800.0)
+    sig = rng.uniform(0.3, 1.5, 40)
+    w = scaled_crlb_weights(np.linalg.norm(t))
+    np.testing.assert_allclose(w, [1 / 81.34] * 3 + [1] * 4, rtol=1e-3)
+    # the same scene in mm: unit-weight score changes by 1e6 in its t part, scaled does not
+    mm = 1e3
+    s_m = set_score(X[:10], R, t, K, sigma_px=sig[:10], weights=w)
+    s_mm = set_score(X[:10] * mm, R, t * mm, K, sigma_px=sig[:10],
+                     weights=scaled_crlb_weights(np.linalg.norm(t * mm)))
+    assert s_mm == pytest.approx(s_m, rel=1e-6)
+    u_m = set_score(X[:10], R, t, K, sigma_px=sig[:10])
+    u_mm = set_score(X[:10] * mm, R, t * mm, K, sigma_px=sig[:10])
+    assert u_mm / u_m > 1e5
+    sh = score_shares(X, R, t, K, sig)
+    assert sh["translation"] + sh["quaternion"] == pytest.approx(1.0)
+    assert score_shares(X, R, t, K, sig, w)["translation"] < sh["translation"]
+    with pytest.raises(ValueError, match="length_m"):
+        scaled_crlb_weights(0.0)
+    with pytest.raises(ValueError, match="weights"):
+        score_shares(X, R, t, K, sig, weights=np.ones(6))

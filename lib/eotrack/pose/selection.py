@@ -58,6 +58,8 @@ __all__ = [
     "crlb_weight_matrix",
     "greedy_design",
     "information_monotonicity",
+    "scaled_crlb_weights",
+    "score_shares",
     "select_features_crlb",
     "set_score",
 ]
@@ -78,6 +80,46 @@ def crlb_weight_matrix(R: Any, weights: Any = None) -> np.ndarray:
         raise ValueError("weights must be >= 0")
     E = minimal_to_quaternion_jacobian(quaternion_from_matrix(R))
     return E.T @ (w[:, None] * E)
+
+
+def scaled_crlb_weights(length_m: float) -> np.ndarray:
+    """Weights that make the paper's score dimensionless: ``(1/L², 1/L², 1/L², 1, 1, 1, 1)``.
+
+    With unit weights the score adds the translation variances (m²) to the quaternion
+    variances (dimensionless) — its value and the selection depend on the unit of length.
+    Dividing the translation terms by a stated length ``L`` squared (e.g. the range ``|t|``:
+    the score then adds relative position variances to quaternion variances, which are about
+    a quarter of the attitude variances in rad²) removes the unit.
+
+    Parameters
+    ----------
+    length_m
+        The length scale ``L`` (m), > 0.
+
+    Returns
+    -------
+    numpy.ndarray
+        (7,) weights for :func:`set_score` / :func:`select_features_crlb` (``weights=``).
+    """
+    L = check_positive(length_m, "length_m")
+    return np.r_[np.full(3, 1.0 / L**2), np.ones(4)]
+
+
+def score_shares(points: Any, R: Any, t: Any, K: Any, sigma_px: Any,
+                 weights: Any = None) -> dict[str, float]:
+    """Share of the exact weighted CRLB score from the translation and the quaternion terms.
+
+    Returns
+    -------
+    dict
+        ``{"translation": s_t, "quaternion": s_q}`` with ``s_t + s_q = 1``.
+    """
+    from .fisher import quaternion_crlb
+
+    w = np.ones(7) if weights is None else as_finite_array(weights, "weights", shape=(7,))
+    d = w * np.diag(quaternion_crlb(points, R, t, K, sigma_px))
+    total = float(d.sum())
+    return {"translation": float(d[:3].sum()) / total, "quaternion": float(d[3:].sum()) / total}
 
 
 def _point_info(G: np.ndarray) -> np.ndarray:

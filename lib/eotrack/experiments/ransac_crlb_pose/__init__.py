@@ -78,6 +78,7 @@ from .trials import (
     run_pose_experiment,
     run_trial,
     select_and_refit,
+    weights_study,
     wilcoxon_less,
 )
 
@@ -127,6 +128,7 @@ __all__ = [
     "status_fig5",
     "status_fig6",
     "warm_explore_cache",
+    "weights_study",
     "wilcoxon_less",
     "with_changes",
 ]

@@ -22,6 +22,7 @@ from eotrack.pose import (
     projection_jacobian,
     ransac_pose_dlt,
     refine_pose,
+    scaled_crlb_weights,
     select_features_crlb,
 )
 from eotrack.validation import check_choice, check_int, check_positive
@@ -46,13 +47,15 @@ __all__ = [
     "run_pose_experiment",
     "run_trial",
     "select_and_refit",
+    "weights_study",
     "wilcoxon_less",
 ]
 
 
 def select_and_refit(reading: str, X: np.ndarray, u: np.ndarray, K: np.ndarray,
                      R: np.ndarray, t: np.ndarray, sigma: np.ndarray,
-                     rng: np.random.Generator, settings: Settings | None = None) -> dict:
+                     rng: np.random.Generator, settings: Settings | None = None,
+                     weights: Any = None) -> dict:
     """Apply one reading of the §2.4 rule to RANSAC inliers and re-estimate the pose.
 
     Parameters
@@ -69,6 +72,9 @@ def select_and_refit(reading: str, X: np.ndarray, u: np.ndarray, K: np.ndarray,
         Generator for the start draws and the order of the rest.
     settings
         :class:`Settings` (start draws, tolerance).
+    weights
+        (7,) weights of the score's 7 CRLB values (default ones: m² + quaternion², as the
+        reproduction; :func:`eotrack.pose.scaled_crlb_weights` makes it dimensionless).
 
     Returns
     -------
@@ -81,7 +87,8 @@ def select_and_refit(reading: str, X: np.ndarray, u: np.ndarray, K: np.ndarray,
     resid = u - project_points(X, R, t, K)
     sig = estimate_point_sigma(resid) if noise == "est" else sigma
     sel = select_features_crlb(X, R, t, K, rng, rule=rule, start=start, sigma_px=sig,
-                               residuals=resid, max_draws=st.crlb_max_draws, tol=st.tolerance)
+                               residuals=resid, max_draws=st.crlb_max_draws, tol=st.tolerance,
+                               weights=weights)
     S = sel.selected
     Rs, ts = (R, t) if S.all() else refine_pose(X[S], u[S], K, R, t)
     return {"selected": S, "fallback": sel.fallback, "R": Rs, "t": ts}
@@ -120,6 +127,44 @@ def run_trial(rng: np.random.Generator, scenario: Scenario, settings: Settings,
         out[f"n_{name}"] = int(r["selected"].sum())
         out[f"fallback_{name}"] = bool(r["fallback"])
     return out
+
+
+def _weights_trial(rng: np.random.Generator, scenario: Scenario, settings: Settings,
+                   reading: str) -> dict:
+    scene = make_scene(rng, scenario)
+    res = ransac_pose_dlt(scene.points, scene.pixels, scene.K, rng,
+                          settings.ransac_config(scenario))
+    if not res.success:
+        return {"success": False}
+    inl = res.inliers
+    X, u, sig = scene.points[inl], scene.pixels[inl], scene.sigma[inl]
+    out: dict[str, Any] = {"success": True, "n_inliers": int(inl.sum())}
+    out["pos_ransac"], out["att_ransac"] = pose_errors(res.R, res.t, scene)
+    seed = int(rng.integers(2**62))
+    L = float(np.linalg.norm(res.t))
+    for name, w in (("unit", None), ("scaled", scaled_crlb_weights(L))):
+        r = select_and_refit(reading, X, u, scene.K, res.R, res.t, sig,
+                             np.random.default_rng(seed), settings, weights=w)
+        out[f"pos_{name}"], out[f"att_{name}"] = pose_errors(r["R"], r["t"], scene)
+        out[f"frac_{name}"] = float(r["selected"].mean())
+    return out
+
+
+def weights_study(n_runs: int = 80, *, reading: str = "pooled", scenario: Scenario | None = None,
+                  settings: Settings | None = None, runner: TrialRunner | None = None,
+                  seed: int = 29) -> pd.DataFrame:
+    """The score's units (beyond the paper): unit weights (m² + quaternion²) versus the
+    dimensionless weights of :func:`eotrack.pose.scaled_crlb_weights` with ``L = |t̂|``.
+
+    Each run: one image, RANSAC, then ``reading`` with both weightings from the same start
+    stream (paired). Columns ``pos_/att_/frac_`` × ``unit``/``scaled`` and ``*_ransac``.
+    """
+    check_choice(reading, "reading", list(READINGS))
+    rows = run_trials(_weights_trial, check_int(n_runs, "n_runs", min_value=2), seed=seed,
+                      args=(scenario or Scenario(), settings or Settings(), reading),
+                      runner=runner, desc="weights study")
+    df = pd.DataFrame(rows)
+    return df[df["success"]].reset_index(drop=True)
 
 
 def run_pose_experiment(n_runs: int, *, scenario: Scenario | None = None,
