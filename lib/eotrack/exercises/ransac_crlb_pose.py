@@ -12,33 +12,51 @@ from eotrack.exercises import ArrayAnswer, Choice, FunctionAnswer, NumericAnswer
 
 SLUG = "ransac_crlb_pose"
 
-#: Exercise 1's point and camera: target point X (m), pose R = I, t (m), f (mm), σ (mm).
-EX1 = {"X": (0.5, -0.2, 0.0), "t": (0.0, 0.0, 10.0), "f_mm": 10.0, "sigma_mm": 0.2}
+#: Exercise 1's point and camera: target point X (m), attitude angles (deg, extrinsic x-y-z,
+#: R = eotrack.pose.attitude_matrix(angles)), t (m), f (mm), σ (mm). R ≠ I, so the
+#: perturbation convention matters: −[R X]ₓ (camera frame, the library's) and −R[X]ₓ (body
+#: frame) give different J₁.
+EX1 = {"X": (0.5, -0.2, 0.3), "angles_deg": (30.0, -20.0, 50.0), "t": (0.4, -0.3, 10.0),
+       "f_mm": 10.0, "sigma_mm": 0.2}
+
+
+def _ex1_R() -> np.ndarray:
+    from eotrack.pose import attitude_matrix
+
+    return attitude_matrix(EX1["angles_deg"])
 
 
 def _ex1_expected() -> np.ndarray:
     from eotrack.pose import intrinsic_matrix, pose_fisher_information
 
-    return pose_fisher_information(np.array([EX1["X"]]), np.eye(3), np.array(EX1["t"]),
+    return pose_fisher_information(np.array([EX1["X"]]), _ex1_R(), np.array(EX1["t"]),
                                    intrinsic_matrix(EX1["f_mm"]), EX1["sigma_mm"])
+
+
+def _scaled_score(points, R, t, K, sigma) -> float:
+    """Dimensionless score: weighted sum of the 7 CRLBs, translation terms divided by |t|²."""
+    from eotrack.pose import quaternion_crlb, scaled_crlb_weights
+
+    w = scaled_crlb_weights(float(np.linalg.norm(t)))
+    return float(np.sum(w * np.diag(quaternion_crlb(points, R, t, K, sigma))))
 
 
 def _ex2_expected() -> float:
     from eotrack.experiments.ransac_crlb_pose import Scenario, make_scene
-    from eotrack.pose import pose_crlb
 
     sc = Scenario()
     s = make_scene(np.random.default_rng(0), sc, outlier_fraction=0.0)
-    c6 = np.trace(pose_crlb(s.points[:6], sc.R, sc.t, sc.K, s.sigma[:6]))
-    return float(c6 / np.trace(pose_crlb(s.points, sc.R, sc.t, sc.K, s.sigma)))
+    return (_scaled_score(s.points[:6], sc.R, sc.t, sc.K, s.sigma[:6])
+            / _scaled_score(s.points, sc.R, sc.t, sc.K, s.sigma))
 
 
 def points_needed(points, R, t, K, sigma, frac):
-    """Reference for exercise 3: the fewest leading points whose exact CRLB score is within
-    ``(1 + frac)`` of the score of all points (points taken in the given order)."""
-    from eotrack.pose import information_monotonicity
+    """Reference for exercise 3: the fewest leading points whose dimensionless CRLB score
+    (exercise 2's) is within ``(1 + frac)`` of the score of all points (given order)."""
+    from eotrack.pose import information_monotonicity, scaled_crlb_weights
 
-    s = information_monotonicity(points, R, t, K, sigma)
+    s = information_monotonicity(points, R, t, K, sigma,
+                                 weights=scaled_crlb_weights(float(np.linalg.norm(t))))
     return int(6 + np.flatnonzero(s <= (1.0 + frac) * s[-1])[0])
 
 
@@ -53,44 +71,57 @@ def _ex3_inputs() -> list[tuple]:
     return out
 
 
-def _ex4_expected() -> float:
-    from eotrack.experiments.ransac_crlb_pose import explore_runs, explore_selection
+def _ex4_expected() -> np.ndarray:
+    from eotrack.experiments.ransac_crlb_pose import (
+        bootstrap_ratio_ci,
+        explore_runs,
+        explore_selection,
+    )
 
     att, _ = explore_selection(0.01, "pooled", 0.01)
     base = np.array([r["att_ransac"] for r in explore_runs(0.01)])
-    return float(att.mean() / base.mean())
+    return np.array(bootstrap_ratio_ci(att, base, seed=0))
 
 
 register(f"{SLUG}.1", ArrayAnswer(
-    "Derive the Fisher information J₁ = G₁ᵀG₁/σ² of ONE point for (δt, δθ) and evaluate it "
-    f"(6×6) for the target point X = {EX1['X']} m, R = I, t = {EX1['t']} m, f = "
-    f"{EX1['f_mm']} mm, σ = {EX1['sigma_mm']} mm.",
+    "Derive the Fisher information J₁ = G₁ᵀG₁/σ² of ONE point for (δt, δθ) — perturbations "
+    "t ← t + δt, R ← exp([δθ]ₓ) R (camera frame) — and evaluate it (6×6, units 1/m², 1/(m·rad), "
+    f"1/rad²) for the target point X = {EX1['X']} m, R = attitude_matrix({EX1['angles_deg']}) "
+    f"(deg, x-y-z), t = {EX1['t']} m, f = {EX1['f_mm']} mm, σ = {EX1['sigma_mm']} mm.",
     expected=_ex1_expected, rtol=1e-6, atol=1e-9,
-    hint="∂u/∂x_c = (K[:2] − u e₃ᵀ)/z_c; ∂x_c/∂δt = I and ∂x_c/∂δθ = −[R X]ₓ; "
-         "J₁ has rank 2 (one point gives two measurements)."))
+    hint="∂u/∂x_c = (K[:2] − u e₃ᵀ)/z_c; ∂x_c/∂δt = I and ∂x_c/∂δθ = −[R X]ₓ (not −R[X]ₓ: "
+         "that is a body-frame perturbation); J₁ has rank 2 (one point gives two numbers)."))
 
 register(f"{SLUG}.2", NumericAnswer(
-    "For make_scene(np.random.default_rng(0), outlier_fraction=0.0) on the paper's Scenario(), "
-    "compute tr CRLB(first 6 points) / tr CRLB(all points) (6×6 minimal-form CRLB, true σ_i, "
-    "true pose).",
+    "The paper's score adds translation variances (m²) to quaternion variances (no unit); make "
+    "it dimensionless with weights scaled_crlb_weights(|t|) (translation terms divided by "
+    "|t|²). For make_scene(np.random.default_rng(0), outlier_fraction=0.0) on the paper's "
+    "Scenario(), true pose and true σ_i, compute score(first 6 points) / score(all points) of "
+    "that dimensionless score on the 7 CRLB values (quaternion_crlb).",
     expected=_ex2_expected, rtol=1e-4,
-    hint="pose_crlb(points, R, t, K, sigma) gives the 6×6 bound; the ratio is ≥ 1 because "
-         "information only adds up."))
+    hint="np.sum(w * np.diag(quaternion_crlb(points, R, t, K, sigma))) with "
+         "w = scaled_crlb_weights(np.linalg.norm(t)); the ratio is ≥ 1 because information "
+         "only adds up."))
 
 register(f"{SLUG}.3", FunctionAnswer(
     "Write points_needed(points, R, t, K, sigma, frac) → int: the fewest leading points (taken "
-    "in the given order, at least 6) whose exact weighted CRLB score is within (1 + frac) of "
-    "the score of all the points — a stopping rule that CAN drop points.",
+    "in the given order, at least 6) whose dimensionless CRLB score (exercise 2's: weights "
+    "scaled_crlb_weights(|t|)) is within (1 + frac) of the score of all the points — a "
+    "stopping rule that CAN drop points.",
     reference=points_needed, inputs=_ex3_inputs, rtol=0.0, atol=0.0,
-    hint="information_monotonicity gives the score of every leading set S_6 ⊂ S_7 ⊂ … ⊂ S_n; "
-         "it is non-increasing, so the first index under the target is the answer."))
+    hint="information_monotonicity(..., weights=...) gives the score of every leading set "
+         "S_6 ⊂ S_7 ⊂ … ⊂ S_n; it is non-increasing, so the first index under the target is "
+         "the answer."))
 
-register(f"{SLUG}.4", NumericAnswer(
-    "In the Explore panel choose the noise unit 0.01 mm (pixel reading) and the 'pooled' "
-    "reading: what mean attitude-error ratio (CRLB selection / RANSAC only) does the title "
-    "show?",
-    expected=_ex4_expected, rtol=0.01,
-    hint="read the number in the left plot's title (two decimals are enough)."))
+register(f"{SLUG}.4", ArrayAnswer(
+    "The Explore panel shows 24 cached runs. At the pixel reading (noise unit 0.01 mm) with "
+    "the 'pooled' reading, compute the 95 % paired-bootstrap interval (lo, hi) of the mean "
+    "attitude-error ratio CRLB selection / RANSAC only over those runs: att, _ = "
+    "E.explore_selection(0.01, 'pooled', 0.01); base = the runs' 'att_ransac' from "
+    "E.explore_runs(0.01); E.bootstrap_ratio_ci(att, base, seed=0). Then do the same at 1 mm "
+    "and say whether 24 runs can tell the two noise levels apart.",
+    expected=_ex4_expected, rtol=0.03, atol=0.0,
+    hint="the ratio is CRLB / RANSAC (not the inverse); the interval, not the point estimate."))
 
 register(f"{SLUG}.5", Choice(
     "Critique. Why can the §2.4 rule, as printed, never drop a point? (a) RANSAC already "
