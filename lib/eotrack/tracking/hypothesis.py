@@ -311,10 +311,10 @@ def area_detection_pixels(p_d_pixels: Any, p_f: Any, window: int, s: Any) -> flo
 
     A real spot (eq. 1) is brighter at its centre: target pixel ``i`` is suspicious with its own
     probability ``p_i``. The count is then a Poisson-binomial ``Σ_i Bernoulli(p_i)`` plus
-    ``Binomial(W_S − T_S, P_F)``: its pmf is the convolution of the ``T_S`` two-point pmfs
-    (built pixel by pixel over the ``T_S ≤ W_S`` pixels, vectorised over ``S`` and ``P_F``),
-    and ``P(D ≥ S) = Σ_k P(target count = k) · P(Binomial(W_S − T_S, P_F) ≥ S − k)``. With
-    every ``p_i`` equal it is :func:`area_detection_exact`.
+    ``Binomial(W_S − T_S, P_F)``: the target pmf is the convolution of the ``T_S`` two-point
+    pmfs (built pixel by pixel, ``T_S ≤ W_S`` steps), shifted onto the noise pmf of every distinct
+    ``P_F`` at once, and the tail ``P(D ≥ S)`` is summed from the small end. With every ``p_i``
+    equal it is :func:`area_detection_exact`.
 
     Parameters
     ----------
@@ -355,9 +355,14 @@ def area_detection_pixels(p_d_pixels: Any, p_f: Any, window: int, s: Any) -> flo
         pmf[1:i + 2] = pmf[1:i + 2] * (1 - p) + pmf[:i + 1] * p
         pmf[0] *= 1 - p
     pf_b, s_b = np.broadcast_arrays(pf, ss)
-    k = np.arange(ts + 1).reshape((-1,) + (1,) * pf_b.ndim)
-    terms = pmf.reshape(k.shape) * _tail(s_b - k, n - ts, pf_b)
-    return _out(np.clip(terms.sum(axis=0), 0.0, 1.0), p_f, s)
+    uniq, inv = np.unique(pf_b.ravel(), return_inverse=True)
+    noise = binom.pmf(np.arange(n - ts + 1)[None, :], n - ts, uniq[:, None])  # (u, W_S-T_S+1)
+    d_pmf = np.zeros((uniq.size, n + 1))
+    for k in range(ts + 1):  # pmf of D = target count + noise count, one shift per k
+        d_pmf[:, k:k + n - ts + 1] += pmf[k] * noise
+    tail = d_pmf[:, ::-1].cumsum(axis=1)[:, ::-1]  # P(D >= j), summed from the small end
+    out = tail[inv, s_b.ravel()].reshape(pf_b.shape)
+    return _out(np.clip(out, 0.0, 1.0), p_f, s)
 
 
 # --------------------------------------------------------------------------- temporal continuity
