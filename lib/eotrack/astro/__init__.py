@@ -19,6 +19,7 @@ from .frames import (  # noqa: E402
     topocentric_azel,
     topocentric_radec,
 )
+from .orbit_fit import OrbitFit, fit_orbit, gauss_iod, propagate_state  # noqa: E402
 from .shadow import (  # noqa: E402
     PENUMBRA,
     SUNLIT,
@@ -35,12 +36,16 @@ __all__ = [
     "PENUMBRA",
     "SUNLIT",
     "UMBRA",
+    "OrbitFit",
     "StarCatalog",
     "Station",
     "azel_from_enu",
     "configure_offline",
     "earth_shadow",
+    "fit_orbit",
+    "gauss_iod",
     "load_catalog",
+    "propagate_state",
     "propagate_teme",
     "radec_from_vector",
     "satellite",

@@ -6,7 +6,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from eotrack.exercises import Choice, FunctionAnswer, NumericAnswer, register
+from eotrack.exercises import FunctionAnswer, NumericAnswer, register
 
 
 def _wls_reference(a, y, w):
@@ -28,22 +28,46 @@ def _wls_inputs():
     return out
 
 
-def _gm_sd_72():
+def _gm_sd_45_cloud():
     from eotrack.experiments import wransac as W
 
     sc = W.make_scenario()
-    t72 = np.array([sc.t_obs_s[-1] + 72 * 60.0])
-    return W.gauss_markov(sc.t_obs_s, t72, np.ones(len(sc.t_obs_s), bool), 3.0)[0]
+    t = sc.t_obs_s
+    inl = np.zeros(len(t), bool)
+    inl[:60] = True
+    return W.gauss_markov(t, np.array([t[-1] + 45 * 60.0]), inl, 3.0)[0]
 
 
 @lru_cache(maxsize=1)
-def _budget():
+def _budget_errors():
     from eotrack.experiments import wransac as W
     from eotrack.montecarlo import TrialRunner
 
-    err = W.budget_sweep(budgets=W.BUDGETS, methods=W.BUDGET_METHODS,
-                         runner=TrialRunner(progress=False))
-    return W.budget_table(err, W.BUDGETS, W.BUDGET_METHODS)
+    return W.budget_sweep(budgets=W.BUDGETS, methods=W.BUDGET_METHODS,
+                          runner=TrialRunner(progress=False))
+
+
+def _cauchy_u5_within_15():
+    from eotrack.experiments import wransac as W
+
+    return float(W.budget_table(_budget_errors(), W.BUDGETS, W.BUDGET_METHODS,
+                                bound_arcsec=15.0).loc[5, "cauchy_ransac"])
+
+
+@lru_cache(maxsize=1)
+def _paired_ratio_72_dec() -> float:
+    from eotrack.experiments import wransac as W
+    from eotrack.montecarlo import TrialRunner
+
+    res = W.run_prediction_experiment(methods=("ransac", "wransac"),
+                                      runner=TrialRunner(progress=False))
+    return W.variance_ratio(res, "wransac", "ransac", "dec", 72, n_boot=10)[0]
+
+
+def _unpaired_reversal_probability() -> float:
+    from scipy.stats import f
+
+    return float(f.cdf(1.0 / _paired_ratio_72_dec(), 19, 19))
 
 
 def _student_efficiency_5():
@@ -61,29 +85,33 @@ register("wransac.1", NumericAnswer(
          "of t_ν is s²ν/(ν−2) — set it to σ²."))
 
 register("wransac.2", NumericAnswer(
-    "Computation. With eotrack.experiments.wransac.gauss_markov, compute the standard deviation "
-    "(arcsec) of the OLS prediction 72 min after the last observation when all 80 observations "
-    "of the main scenario are inliers with σ = 3″.",
-    expected=_gm_sd_72, rtol=1e-2,
-    hint="t_pred is one time: the last observation time plus 72 × 60 s; the inlier mask is all "
-         "True."))
+    "Computation. Clouds hide the last 20 of the 80 observations of the main scenario, so only "
+    "the first 60 are inliers (σ = 3″). With eotrack.experiments.wransac.gauss_markov, compute "
+    "the standard deviation (arcsec) of the OLS prediction 45 min after the last of the 80 "
+    "observation times.",
+    expected=_gm_sd_45_cloud, rtol=1e-2,
+    hint="the inlier mask has 80 entries, the first 60 True; the prediction time is "
+         "t_obs[-1] + 45 × 60 s; the function returns a standard deviation, not a variance."))
 
 register("wransac.3", NumericAnswer(
-    "Exploration. In the Explore panel, set U = 3 (the paper's eq. 2 value) and show RANSAC: "
-    "what fraction of the runs keep the whole 72-min Dec prediction within 27″? (0–1)",
-    expected=lambda: float(_budget().loc[3, "ransac"]), atol=0.015,
-    hint="read the percentage printed under the RANSAC box and divide by 100."))
+    "Exploration. From the Explore sweep `budget_err` (errors, runs × budgets × methods × "
+    "times), compute the fraction (0–1) of runs in which the Cauchy M-estimator started from "
+    "RANSAC ('cauchy_ransac'), with U = 5 hypotheses, keeps its whole 72-min Dec prediction "
+    "within 15″.",
+    expected=_cauchy_u5_within_15, atol=0.005,
+    hint="index the budget axis with W.BUDGETS.index(5) and the method axis with "
+         "W.BUDGET_METHODS.index('cauchy_ransac'); take each run's largest |error| over the "
+         "times; or use W.budget_table(..., bound_arcsec=15)."))
 
-register("wransac.4", Choice(
-    "Critique. Under Gaussian noise, WRANSAC with weights from the best hypothesis's residuals "
-    "has a larger 72-min variance than RANSAC. Which is the main cause? "
-    "(a) the sinusoidal loss selects inlier sets that contain gross errors; "
-    "(b) the weights come from the residuals of a noisy 4-point hypothesis, so the refit is "
-    "pulled toward that hypothesis; (c) eq. (6) as printed is used; "
-    "(d) 100 hypotheses are too few.",
-    options=["a", "b", "c", "d"], answer="b",
-    hint="compare the shuffled-weights control with the hypothesis-weights refit, and look at "
-         "the pull plot."))
+register("wransac.4", NumericAnswer(
+    "Critique. The paper ordered WRANSAC and RANSAC from 20 runs, each method on its own draws. "
+    "Take the true 72-min Dec variance ratio WRANSAC/RANSAC to be the one our paired runs "
+    "measure (W.variance_ratio on the main experiment), and model each method's 20-run variance "
+    "estimate as σ²χ²₁₉/19, independent between the methods. With what probability do 20 "
+    "unpaired runs show WRANSAC's variance *below* RANSAC's, the paper's ordering?",
+    expected=_unpaired_reversal_probability, rtol=0.03,
+    hint="the ratio of the two estimates over the true ratio r is F(19, 19); you need "
+         "P(r·F < 1) = F.cdf(1/r, 19, 19) (scipy.stats.f)."))
 
 register("wransac.5", FunctionAnswer(
     "Write the weighted refit: a function wls(A, y, w) returning θ that minimises "

@@ -47,6 +47,7 @@ METHOD_LABELS = {
     "wransac_iterated": "WRANSAC (iterated weights)", "ideal": "ideal: OLS on true inliers",
     "msac": "MSAC", "huber": "Huber from LSQ", "soft_l1": "soft-L1 from LSQ",
     "huber_ransac": "Huber from RANSAC", "cauchy_ransac": "Cauchy from RANSAC",
+    "orbit": "orbit fit (Gauss IOD + Cauchy LSQ)",
 }
 
 
@@ -304,8 +305,9 @@ def plot_eclipse_season(sc: Scenario, *, ax: plt.Axes | None = None) -> plt.Axes
     return ax
 
 
-def plot_generalisation(table: pd.DataFrame, *, ax: plt.Axes | None = None) -> plt.Axes:
-    """Worst 72-min error per method and scenario (log scale)."""
+def plot_generalisation(table: pd.DataFrame, *, ax: plt.Axes | None = None,
+                        title: str = "Generalisation") -> plt.Axes:
+    """Worst 72-min error per method and scenario (log scale); ticks: the case's NORAD id."""
     ax = get_ax(ax, figsize=(8, 4))
     worst = table["worst"]
     x = np.arange(len(worst.index))
@@ -314,8 +316,8 @@ def plot_generalisation(table: pd.DataFrame, *, ax: plt.Axes | None = None) -> p
         ax.bar(x + (i - k / 2) * 0.8 / k, worst[m], width=0.8 / k,
                label=METHOD_LABELS.get(m, m))
     ax.set_yscale("log")
-    ax.set_xticks(x, worst.index, fontsize=8)
+    ax.set_xticks(x, [str(k).split(" (")[0].split(",")[0] for k in worst.index], fontsize=8)
     ax.axhline(27, ls="--", c="k", lw=0.8)
-    ax.set(ylabel="worst |error| in 72 min, RA or Dec (″)", title="Generalisation")
+    ax.set(ylabel="worst |error| in 72 min, RA or Dec (″)", title=title)
     ax.legend(fontsize=7, ncol=3)
     return ax
