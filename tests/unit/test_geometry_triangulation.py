@@ -93,3 +93,43 @@ def test_closest_points_ends_of_common_perpendicular():
         closest_points_two_rays([0, 0, 0], [0, 0, 0], [0, 1, 0], [1, 0, 0])
     with pytest.raises(ValueError, match="o1 must end in 3"):
         closest_points_two_rays([0, 0], [1, 0, 0], [0, 1, 0], [1, 0, 0])
+
+
+def test_held_out_short_baseline_error_scaling():
+    """Held out: the range error of two-ray triangulation under angular noise ε grows as
+    ε·R²/B (range R, baseline B) — the reason the paper's short baselines hurt. Checked over
+    baselines 100–3000 km at GEO range, against the first-order prediction σ_R ≈ √2·ε·R²/B
+    (the difference of two independent in-plane angular errors) to within a factor 2 on the
+    median."""
+    rng = np.random.default_rng(7)
+    eps = 1e-5  # rad, per axis
+    R = 36000.0
+    for B in (100.0, 500.0, 3000.0):
+        errs = []
+        for _ in range(400):
+            X = np.array([0.0, 0.0, R])
+            o1, o2 = np.array([-B / 2, 0, 0]), np.array([B / 2, 0, 0])
+            d1 = X - o1 + rng.normal(size=3) * eps * R
+            d2 = X - o2 + rng.normal(size=3) * eps * R
+            errs.append(np.linalg.norm(triangulate_two_rays(o1, d1, o2, d2) - X))
+        # first order: the in-plane angular errors (σ = ε each, two rays) move the
+        # intersection along the line of sight by R²/B per radian of their difference
+        pred = eps * np.sqrt(2) * R**2 / B
+        med = np.median(errs) / 0.6745  # median |N(0, σ)| = 0.6745 σ
+        assert 0.5 < med / pred < 2.0, (B, med, pred)
+
+
+@settings(max_examples=30, deadline=None)
+@given(st.integers(0, 2**31 - 1), st.integers(2, 8))
+def test_held_out_rays_match_least_squares_reference(seed, n):
+    """Held out: noisy rays from random origins; triangulate_rays equals the independent
+    normal-equation solution Σ(I − d dᵀ) X = Σ(I − d dᵀ) o."""
+    rng = np.random.default_rng(seed)
+    X = rng.normal(size=3) * 4e4
+    o = rng.normal(size=(n, 3)) * 7e3
+    d = X - o + rng.normal(size=(n, 3)) * 50.0
+    u = d / np.linalg.norm(d, axis=1, keepdims=True)
+    A = sum(np.eye(3) - np.outer(ui, ui) for ui in u)
+    b = sum((np.eye(3) - np.outer(ui, ui)) @ oi for ui, oi in zip(u, o))
+    ref = np.linalg.solve(A, b)
+    np.testing.assert_allclose(triangulate_rays(o, d), ref, rtol=1e-7, atol=1e-6)

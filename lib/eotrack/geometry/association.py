@@ -1,5 +1,12 @@
 """Association of points across views by the epipolar constraint (Huang et al., §1.2 steps 4–6).
 
+**The gate a user gets by default.** Give :func:`associate` the predicted spread of a true
+pair's point-to-line distance, ``sigma_px`` (one signed, roughly Gaussian coordinate), instead
+of a threshold: the gate is then the χ² bound ``L = σ · sqrt(χ²₁(p))`` with ``p = 0.99``
+(:func:`chi2_gate`) — a true pair falls outside it with probability 1 − p. The paper guesses
+L (8–12 px); ``eotrack.experiments.epipolar.error_budget_gate`` derives σ from an attitude /
+position / centroid error budget. An explicit ``threshold`` still overrides.
+
 * :func:`associate` — step 4 (candidates: distance below the threshold L) and step 5 (a point
   with several candidates keeps the nearest; every point is used at most once). The paper's
   rule is implemented as a greedy pass over all candidate pairs in increasing distance, which
@@ -18,6 +25,7 @@ from collections.abc import Mapping, Sequence
 
 import numpy as np
 from scipy.optimize import linear_sum_assignment
+from scipy.stats import chi2
 
 from eotrack.validation import as_finite_array, as_points, check_choice, check_positive
 
@@ -26,13 +34,48 @@ from .triangulation import triangulate_two_rays
 
 __all__ = [
     "ASSOCIATION_RULES",
+    "DEFAULT_GATE_PROBABILITY",
     "associate",
+    "chi2_gate",
     "greedy_candidates",
     "summary_table",
     "three_view_check",
 ]
 
 ASSOCIATION_RULES = ("paper", "hungarian")
+#: Probability that a true pair lies inside the default χ² gate.
+DEFAULT_GATE_PROBABILITY = 0.99
+
+
+def chi2_gate(sigma_px, p: float = DEFAULT_GATE_PROBABILITY, *, dof: int = 1) -> float:
+    """The χ² gate ``L = σ · sqrt(χ²_dof(p))`` (px).
+
+    Parameters
+    ----------
+    sigma_px
+        Standard deviation (px, > 0) of a true pair's signed distance to the epipolar line.
+    p
+        Probability in (0, 1) that a true pair falls inside the gate (default 0.99).
+    dof
+        Degrees of freedom: 1 for a point-to-line distance (the default), 2 for a point-to-
+        point distance in an image.
+
+    Returns
+    -------
+    float
+        The gate (px).
+
+    Examples
+    --------
+    >>> round(chi2_gate(2.0), 3)  # 99 %: 2.576 σ
+    5.152
+    """
+    s = check_positive(sigma_px, "sigma_px")
+    if isinstance(p, bool) or not isinstance(p, int | float | np.floating) or not 0 < p < 1:
+        raise ValueError(f"p must be a probability in (0, 1), got {p!r}")
+    if isinstance(dof, bool) or not isinstance(dof, int | np.integer) or dof < 1:
+        raise ValueError(f"dof must be an integer >= 1, got {dof!r}")
+    return float(s * np.sqrt(chi2.ppf(float(p), int(dof))))
 
 
 def _check_dist(dist) -> np.ndarray:
@@ -82,7 +125,8 @@ def greedy_candidates(dist, threshold) -> np.ndarray:
     return np.array(out, int).reshape(-1, 2)
 
 
-def associate(dist, threshold, *, rule: str = "paper") -> np.ndarray:
+def associate(dist, threshold=None, *, rule: str = "paper", sigma_px=None,
+              p: float = DEFAULT_GATE_PROBABILITY) -> np.ndarray:
     """One-to-one association from a distance matrix.
 
     Parameters
@@ -90,17 +134,36 @@ def associate(dist, threshold, *, rule: str = "paper") -> np.ndarray:
     dist
         ``(n1, n2)`` non-negative distances (e.g. :func:`epipolar_distances`).
     threshold
-        Gate L (px, ≥ 0): only pairs with ``dist < L`` can be associated.
+        Gate L (px, ≥ 0): only pairs with ``dist < L`` can be associated. If omitted, the
+        default χ² gate :func:`chi2_gate` ``(sigma_px, p)`` is used.
     rule
         ``"paper"`` (greedy nearest-first) or ``"hungarian"`` (global assignment).
+    sigma_px
+        Predicted spread (px) of a true pair's distance; required when ``threshold`` is
+        omitted, not allowed with it.
+    p
+        Probability of the default gate (0.99).
 
     Returns
     -------
     numpy.ndarray
         ``(k, 2)`` integer index pairs ``(i, j)``, sorted by ``i``.
+
+    Raises
+    ------
+    TypeError
+        If neither or both of ``threshold`` and ``sigma_px`` are given.
     """
     d = _check_dist(dist)
-    t = _check_threshold(threshold)
+    if threshold is None:
+        if sigma_px is None:
+            raise TypeError("associate needs threshold (px) or sigma_px (the spread of a true "
+                            "pair's distance, for the default χ² gate)")
+        t = chi2_gate(sigma_px, p)
+    else:
+        if sigma_px is not None:
+            raise TypeError("give threshold or sigma_px, not both")
+        t = _check_threshold(threshold)
     check_choice(rule, "rule", ASSOCIATION_RULES)
     if d.size == 0:
         return np.zeros((0, 2), int)

@@ -410,10 +410,16 @@ def plot_fig6(running: dict, analytic: dict, paper: dict | None = None, *, ax=No
         n = paper["n_simulations"]
         vals = 100 * np.asarray(paper["max_false_rate"])
         paper_marker(ax, [n] * len(vals), vals, label="paper (one per L)")
-        for i, (Lp, v) in enumerate(zip(paper["threshold_px"], vals)):
-            ax.annotate(f"paper, L = {Lp:g}", (n, v), xytext=(-8, 0),
-                        textcoords="offset points", ha="right", va="center", fontsize=9,
-                        color=f"C{i}")
+        order = np.argsort(vals)
+        ytext = np.asarray(vals, float)[order].copy()
+        for i in range(1, len(ytext)):  # spread the labels at least 8 points apart
+            ytext[i] = max(ytext[i], ytext[i - 1] + 8.0)
+        for i, yt in zip(order, ytext):
+            Lp = paper["threshold_px"][i]
+            ax.annotate(f"paper, L = {Lp:g}: {vals[i]:.0f} %", (n, vals[i]),
+                        xytext=(0.72 * n, yt), textcoords="data", ha="right", va="center",
+                        fontsize=9, color=f"C{i}",
+                        arrowprops={"arrowstyle": "-", "color": f"C{i}", "lw": 0.8})
     ax.set_xlabel("number of simulations")
     ax.set_ylabel("max. false-association rate (%)")
     ax.set_title(title)
@@ -463,7 +469,7 @@ def plot_gate_study(df: pd.DataFrame, *, ax=None, reading: str | None = None):
     what = "uniform bound" if reading == "bound" else "rms"
     ax.set_xlabel(f"attitude error per angle, {what} (arcmin)")
     ax.set_ylabel("threshold (px)")
-    ax.set_title(f"Best L and error-budget gate, attitude error read as {what}", fontsize=10)
+    ax.set_title(f"Best L and gate — attitude as {what}", fontsize=10)
     ax.legend(fontsize=8)
     return ax
 

@@ -10,10 +10,10 @@ from itertools import combinations
 
 import numpy as np
 import pandas as pd
-from scipy.stats import chi2
 
 from eotrack.geometry.association import (
     associate,
+    chi2_gate,
     greedy_candidates,
     summary_table,
     three_view_check,
@@ -303,10 +303,11 @@ def run_sweep(scenario: Scenario, errors: ErrorConfig, thresholds, n_draws: int,
 def error_budget_gate(scenario: Scenario, errors: ErrorConfig = _ERRORS, *,
                       p: float = 0.99) -> tuple[float, float]:
     """``(σ_rms, L)``: rms predicted distance spread of true pairs and the gate
-    ``L = σ_rms · sqrt(χ²₁(p))`` (the distance is one signed Gaussian-like coordinate)."""
+    ``L = σ_rms · sqrt(χ²₁(p))`` (the distance is one signed Gaussian-like coordinate) —
+    :func:`eotrack.geometry.chi2_gate`, the library's default gate."""
     sig = distance_sigma_px(scenario, errors)["sigma_px"].to_numpy()
     s = float(np.sqrt(np.mean(sig**2)))
-    return s, float(s * np.sqrt(chi2.ppf(p, 1)))
+    return s, chi2_gate(s, p)
 
 
 def objects_recovered(obs: Observation, rows: np.ndarray, scenario: Scenario) -> int:
