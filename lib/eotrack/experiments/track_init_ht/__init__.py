@@ -22,6 +22,7 @@ from eotrack.repro import Reproduction
 from eotrack.tracking import hypothesis as hyp
 
 from .claims import (
+    AGREEMENT_METHOD,
     evaluate_experiment,
     evaluate_fig1,
     evaluate_fig2,
@@ -78,6 +79,7 @@ from .trials import (
 )
 
 __all__ = [
+    "AGREEMENT_METHOD",
     "CONFIDENCE",
     "DEMO_SEED",
     "FAIL_PDA",

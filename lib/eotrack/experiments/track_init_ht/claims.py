@@ -29,6 +29,7 @@ from .scenario import (
 from .trials import Fig1Result, Fig2Result
 
 __all__ = [
+    "AGREEMENT_METHOD",
     "CURVED_COVERAGE",
     "MAIN_COVERAGE",
     "evaluate_experiment",
@@ -49,6 +50,8 @@ __all__ = [
 
 #: S range over which the Fig. 1 Monte Carlo is compared with the closed forms.
 S_CHECK = 12
+#: Interval of the Monte Carlo agreement checks (claims.toml): exact coverage in the far tail.
+AGREEMENT_METHOD = "clopper-pearson"
 #: Criterion constants of ``track_init.li_experiment`` (claims.toml): coverage that makes a
 #: target "confirmed", shares of runs required, clustering removal required.
 MAIN_COVERAGE = 0.9
@@ -95,18 +98,19 @@ def fig1_measurement(f1: Fig1Result) -> dict[str, bool]:
     """The small measurement :func:`status_fig1` decides on.
 
     ``reversed`` is the Monte Carlo contradicting the paper's ordering P_DA > P_FA: some
-    (S, SNR) whose estimated P_DA lies below P_FA with the two 99.9 % Wilson intervals disjoint
+    (S, SNR) whose estimated P_DA lies below P_FA with the two 99.9 % intervals disjoint
     (target and noise-only windows are independent draws of the same pixel model).
     """
     sel = f1.s <= S_CHECK
     n = f1.mc_n_target
-    _, hi_d = binomial_interval(np.rint(f1.mc_pda[:, sel] * n), n, confidence=CONFIDENCE)
+    _, hi_d = binomial_interval(np.rint(f1.mc_pda[:, sel] * n), n, confidence=CONFIDENCE,
+                                method=AGREEMENT_METHOD)
     lo_f, _ = binomial_interval(np.rint(f1.mc_pfa[sel] * f1.mc_n_noise), f1.mc_n_noise,
-                                   confidence=CONFIDENCE)
+                                confidence=CONFIDENCE, method=AGREEMENT_METHOD)
     return {"readings_paper": fig1_readings(f1, f1.pda_paper)["all_hold"],
             "readings_exact": fig1_readings(f1, f1.pda_exact)["all_hold"],
-            "mc_agrees_exact": bool(f1.agreement("exact", s_max=S_CHECK)),
-            "mc_agrees_pfa": bool(f1.agreement("pfa", s_max=S_CHECK)),
+            "mc_agrees_exact": bool(f1.agreement("exact", s_max=S_CHECK, familywise=True, method=AGREEMENT_METHOD)),
+            "mc_agrees_pfa": bool(f1.agreement("pfa", s_max=S_CHECK, familywise=True, method=AGREEMENT_METHOD)),
             "reversed": bool(np.any(hi_d < lo_f[None, :]))}
 
 
@@ -140,17 +144,17 @@ def evaluate_fig1(f1: Fig1Result) -> ClaimResult:
     status = status_fig1(m)
     r_paper = fig1_readings(f1, f1.pda_paper)
     r_exact = fig1_readings(f1, f1.pda_exact)
-    a_exact = f1.agreement("exact", s_max=S_CHECK)
-    a_pfa = f1.agreement("pfa", s_max=S_CHECK)
-    a_paper = f1.agreement("paper", s_max=S_CHECK)
+    a_exact = f1.agreement("exact", s_max=S_CHECK, familywise=True, method=AGREEMENT_METHOD)
+    a_pfa = f1.agreement("pfa", s_max=S_CHECK, familywise=True, method=AGREEMENT_METHOD)
+    a_paper = f1.agreement("paper", s_max=S_CHECK, familywise=True, method=AGREEMENT_METHOD)
     bp = ", ".join(f"SNR {s:g}: {v:.3f}" for s, v in zip(f1.snr, r_paper["best_pda_at_low_pfa"]))
     be = ", ".join(f"SNR {s:g}: {v:.3g}" for s, v in zip(f1.snr, r_exact["best_pda_at_low_pfa"]))
     ours = (f"eqs. (4)/(7) readings hold: {r_paper['all_hold']}; best P_DA with P_FA <= "
             f"{LOW_PFA:g}: {bp}. Exact count: {be}. Monte Carlo ({f1.mc_n_target:,} windows per "
-            f"SNR) inside the 99.9 % Wilson interval of the exact count at "
-            f"{a_exact.fraction_inside:.0%} of {a_exact.n_points} S<=12 points (P_FA eq. 4: "
-            f"{a_pfa.fraction_inside:.0%}; family-wise chance of a false alarm <= "
-            f"{a_exact.familywise_bound:.2g}) and of eq. (7) at {a_paper.fraction_inside:.0%}; "
+            f"SNR) inside the family-wise 99.9 % Clopper-Pearson intervals (Bonferroni over the "
+            f"{a_exact.n_points} S<=12 points) of the exact count at "
+            f"{a_exact.fraction_inside:.0%} of points (P_FA eq. 4: "
+            f"{a_pfa.fraction_inside:.0%}) and of eq. (7) at {a_paper.fraction_inside:.0%}; "
             f"Monte Carlo P_DA below P_FA (disjoint intervals) anywhere: {m['reversed']}")
     if status is Status.REPRODUCED:
         note = ""
@@ -175,16 +179,17 @@ def fig2_measurement(f2: Fig2Result) -> dict[str, Any]:
     ``reversed``: the paired Monte Carlo difference P_DS − P_DT (both events counted on the same
     simulated tracks) negative with its 99.9 % interval excluding 0 at some (P_F, T_h). In the
     gate model the true-track event is contained in the sequence event, so the difference is
-    the probability of "sequence but not true track" and its Wilson interval is that of a
+    the probability of "sequence but not true track" and its interval is that of a
     proportion; a negative estimate would mean the two events are not nested.
     """
     gap = f2.pds - f2.pdt  # (T_h, P_F)
     d = f2.mc_pds - f2.mc_pdt
     k = np.rint(np.abs(d) * f2.mc_n)
-    lo, _ = binomial_interval(k, f2.mc_n, confidence=CONFIDENCE)
+    lo, _ = binomial_interval(k, f2.mc_n, confidence=CONFIDENCE, method=AGREEMENT_METHOD)
     return {"ge": bool(np.all(f2.pds >= f2.pdt - 1e-15)),
             "monotone": bool(np.all(np.diff(gap, axis=1) >= -1e-12)),
-            "mc_agrees": all(bool(f2.agreement(w)) for w in ("pds", "pdt", "pft")),
+            "mc_agrees": all(bool(f2.agreement(w, familywise=True, method=AGREEMENT_METHOD))
+                             for w in ("pds", "pdt", "pft")),
             "gap_low": float(gap[:, 0].max()),
             "reversed": bool(np.any((d < 0) & (lo > 0)))}
 
@@ -219,14 +224,15 @@ def evaluate_fig2(f2: Fig2Result, *, min_hits: int) -> ClaimResult:
     p_f = f2.p_f
     gap = f2.pds - f2.pdt  # (T_h, P_F)
     peak_pf = p_f[np.argmax(gap, axis=1)]
-    ag = {w: f2.agreement(w) for w in ("pds", "pdt", "pft")}
+    ag = {w: f2.agreement(w, familywise=True, method=AGREEMENT_METHOD) for w in ("pds", "pdt", "pft")}
     i = min_hits - 1
     ours = (f"P_DS >= P_DT everywhere: {m['ge']}; gap P_DS - P_DT at T_h = {min_hits}: "
             f"{gap[i, -1]:.3f} at P_F = {p_f[-1]:g}, peak {gap[i].max():.3f} at "
             f"P_F = {peak_pf[i]:.2g}, {gap[i, 0]:.1e} at P_F = {p_f[0]:g} (largest "
             f"over T_h at P_F = {p_f[0]:g}: {m['gap_low']:.1e}); monotone in P_F for every T_h: "
-            f"{m['monotone']}; Monte Carlo ({f2.mc_n:,} tracks per P_F) inside the 99.9 % Wilson "
-            f"interval of eqs. (12)/(13)/(9) at " + "/".join(
+            f"{m['monotone']}; Monte Carlo ({f2.mc_n:,} tracks per P_F) inside the family-wise "
+            f"99.9 % Clopper-Pearson intervals (Bonferroni over each curve's {ag['pds'].n_points} points) "
+            f"of eqs. (12)/(13)/(9) at " + "/".join(
                 f"{a.fraction_inside:.0%}" for a in ag.values()) + " of points; paired Monte "
             f"Carlo P_DS - P_DT significantly negative anywhere: {m['reversed']}")
     if status is Status.REPRODUCED:
@@ -240,7 +246,7 @@ def evaluate_fig2(f2: Fig2Result, *, min_hits: int) -> ClaimResult:
                 + f" for T_h = 1..{len(f2.t_h)}. The paper's P_F range is not stated.")
     else:
         note = (f"P_DS >= P_DT: {m['ge']}, gap at smallest P_F {m['gap_low']:.2e}, MC agreement "
-                + "/".join(f"{a.fraction_inside:.0%}" for a in ag.values())
+                "(family-wise) " + "/".join(f"{a.fraction_inside:.0%}" for a in ag.values())
                 + f", reversed by the Monte Carlo: {m['reversed']}")
     return ClaimResult.from_claim(claim, ours=ours, status=status, note=note)
 

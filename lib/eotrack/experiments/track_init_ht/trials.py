@@ -64,11 +64,16 @@ class Fig1Result:
     settings: dict = field(default_factory=dict)
 
     def agreement(self, which: str = "exact", *, s_max: int = 12,
-                  confidence: float = CONFIDENCE) -> Agreement:
+                  confidence: float = CONFIDENCE, familywise: bool = False,
+                  method: str = "wilson") -> Agreement:
         """Monte Carlo against a closed form for ``S ≤ s_max`` (binomial intervals).
 
         ``which``: ``"pfa"`` (eq. 4, noise windows), ``"exact"`` (the exact count) or
-        ``"paper"`` (eq. 7), the last two over every SNR.
+        ``"paper"`` (eq. 7), the last two over every SNR. ``familywise=True``: Bonferroni
+        intervals (each at ``1 − (1 − confidence)/m``), so a correct formula fails with
+        probability at most ``1 − confidence`` over all ``m`` points. ``method``: ``"wilson"``
+        or ``"clopper-pearson"`` (exact coverage; the claims use it, because the Wilson lower
+        bound undercovers far in the tail: one event where ``n p`` ≈ 0.03 falls outside it).
         """
         sel = self.s <= s_max
         if which == "pfa":
@@ -78,7 +83,8 @@ class Fig1Result:
             mc, n = self.mc_pda[:, sel], self.mc_n_target
         else:
             raise ValueError(f"which must be 'pfa', 'exact' or 'paper', got {which!r}")
-        return mc_agreement(np.rint(mc * n), n, formula, confidence=confidence)
+        return mc_agreement(np.rint(mc * n), n, formula, confidence=confidence,
+                            familywise=familywise, method=method)
 
     def table(self) -> pd.DataFrame:
         """Long table: S, SNR, formulas and Monte Carlo."""
@@ -158,14 +164,18 @@ class Fig2Result:
     mc_n: int
     settings: dict = field(default_factory=dict)
 
-    def agreement(self, which: str, *, confidence: float = CONFIDENCE) -> Agreement:
-        """Monte Carlo against eq. (12) ``"pds"``, eq. (13) ``"pdt"`` or eq. (9) ``"pft"``."""
+    def agreement(self, which: str, *, confidence: float = CONFIDENCE,
+                  familywise: bool = False, method: str = "wilson") -> Agreement:
+        """Monte Carlo against eq. (12) ``"pds"``, eq. (13) ``"pdt"`` or eq. (9) ``"pft"``
+        (``familywise``: Bonferroni intervals over the curve's points; ``method`` as in
+        :meth:`Fig1Result.agreement`)."""
         pairs = {"pds": (self.mc_pds, self.pds), "pdt": (self.mc_pdt, self.pdt),
                  "pft": (self.mc_pft, self.pft)}
         if which not in pairs:
             raise ValueError(f"which must be one of {sorted(pairs)}, got {which!r}")
         mc, formula = pairs[which]
-        return mc_agreement(np.rint(mc * self.mc_n), self.mc_n, formula, confidence=confidence)
+        return mc_agreement(np.rint(mc * self.mc_n), self.mc_n, formula, confidence=confidence,
+                            familywise=familywise, method=method)
 
 
 def fig2_monte_carlo(*, snr: float, gate: int, frames: int, p_f: np.ndarray, n: int,
