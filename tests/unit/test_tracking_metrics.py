@@ -94,3 +94,11 @@ def test_initiation_metrics_on_a_small_scene():
         initiation_metrics(tracks, frames, truth, width=512.0, first_frame=9)
     with pytest.raises(TypeError, match="Track"):
         track_states([object()], frames)
+
+
+def test_siap_with_nothing_to_score():
+    c, s = _siap_stonesoup([], [np.zeros((0, 2))] * 3, np.arange(3.0), threshold=5.0,
+                           width=100.0, frames_eval=range(3))
+    assert np.isnan(c) and s == 0.0
+    assert np.isnan(siap_reference([], [np.zeros((0, 2))] * 3, threshold=5.0, width=100.0,
+                                   frames_eval=range(3))["completeness"])

@@ -233,6 +233,8 @@ def _siap_stonesoup(track_pos, truth_xy, times, *, threshold, width, frames_eval
             if d[j] <= thr:
                 assoc.add(TimeRangeAssociation({tr, truths[int(ids[j])]},
                                                TimeRange(stamp[k], stamp[k] + eps)))
+    if not tracks and not truths:  # nothing to score (Stone Soup needs one timestamp)
+        return float("nan"), 0.0
     meas = _position_measure()
     siap = SIAPMetrics(position_measure=meas, velocity_measure=meas)
     mgr = MultiManager([siap])

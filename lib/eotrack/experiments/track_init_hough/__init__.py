@@ -74,6 +74,7 @@ from .scenario import (
 )
 from .trials import (
     angle_constraint_table,
+    recall_ablation,
     run_comparison,
     run_planted,
     summarise_metrics,
@@ -121,6 +122,7 @@ __all__ = [
     "plot_scene_tracks",
     "plot_xu_frames",
     "prediction_inside_prob",
+    "recall_ablation",
     "reproduce",
     "run_comparison",
     "run_planted",
