@@ -169,9 +169,20 @@ def test_fig7_panels_are_members_of_the_sweep(rep):
         assert "true path (grey)" in labels and "false track" in labels
 
 
-def test_fig1_familywise_bound_reported(rep):
-    row = next(c for c in rep.claims if c.claim == "track_init.li_fig1")
-    assert "family-wise chance of a false alarm <=" in row.ours  # Bonferroni over the points
+def test_monte_carlo_checks_are_familywise(rep):
+    """Several readings compared at once: Bonferroni-corrected, exact-coverage intervals."""
+    f1, f2 = rep.data["fig1"], rep.data["fig2"]
+    for cid in ("track_init.li_fig1", "track_init.li_fig2"):
+        row = next(c for c in rep.claims if c.claim == cid)
+        assert "family-wise 99.9 % Clopper-Pearson intervals (Bonferroni" in row.ours
+    m2 = exp.fig2_measurement(f2)
+    assert m2["mc_agrees"] == all(bool(f2.agreement(w, familywise=True, method="clopper-pearson"))
+                                  for w in ("pds", "pdt", "pft"))
+    m1 = exp.fig1_measurement(f1)
+    assert m1["mc_agrees_exact"] == bool(f1.agreement("exact", familywise=True,
+                                                      method="clopper-pearson"))
+    a = f2.agreement("pft", familywise=True, method="clopper-pearson")
+    assert a.familywise_bound <= 1e-3 + 1e-12  # the whole curve at 99.9 %
 
 
 def test_seeds_derive_every_generator():
@@ -191,3 +202,19 @@ def test_seeds_derive_every_generator():
     r1 = exp.sequence_experiment(st, 2, seed=exp.seeds(9)["sequences"])
     r2 = exp.sequence_experiment(st, 2, seed=exp.seeds(9)["sequences"])
     assert r1["p_f"] == r2["p_f"] and r1["removed"] == r2["removed"]
+
+
+def test_bad_input_of_the_new_helpers():
+    with pytest.raises(ValueError, match="k"):
+        exp.run_share(5, 4)
+    with pytest.raises(ValueError):
+        exp.run_share(0, 0)
+    st = exp.SequenceSettings.from_paper()
+    with pytest.raises(ValueError, match="n_runs"):
+        exp.snr_sweep(st, [2.0], 0)
+    with pytest.raises(ValueError, match="paper_runs"):
+        exp.snr_sweep(st, [2.0], 3, paper_runs=[{}])
+    p, lo, hi = exp.run_share(0, 24)
+    assert p == 0 and lo == 0 and 0.13 < hi < 0.15  # 95 % Clopper-Pearson upper bound
+    assert exp.status_experiment({"n_runs": 24, "removed": 0.99, "main_ok": 24,
+                                  "curved_ok": 0}) is Status.NOT_REPRODUCED

@@ -28,56 +28,61 @@ setup_notebook()
 P = E.paper_settings()
 
 # %% [markdown]
-# ## Exercise 1 — eq. (4) as a binomial tail
+# ## Exercise 1 — the exact count for a spot whose pixels differ
 #
-# Number the window's pixels $1,\dots,W_S$ and let $X_i = 1$ if pixel $i$ is suspicious. In a
-# noise-only window the $X_i$ are independent Bernoulli($P_F$), so their sum $D$ — the count of
-# eq. (3) — is Binomial($W_S$, $P_F$): $\Pr[D=t]=\binom{W_S}{t}P_F^t(1-P_F)^{W_S-t}$ (choose
-# which $t$ pixels fire). The window is (falsely) flagged when $D\ge S$, so
+# Let $X_i=1$ if target pixel $i$ is suspicious ($\Pr = p_i$) and $Y_j=1$ if noise pixel $j$ is
+# ($\Pr = P_F$), all independent. Then $D = \sum_i X_i + \sum_j Y_j = K + N$ with
+# $N\sim\mathrm{Bin}(W_S-T_S, P_F)$ and $K$ a *Poisson-binomial* count: its pmf is the
+# convolution of the two-point pmfs $(1-p_i,\ p_i)$. Conditioning on $K$,
 #
-# $$P_{FA}=\sum_{t=S}^{W_S}\binom{W_S}{t}P_F^t(1-P_F)^{W_S-t}=\Pr[D\ge S]=\Pr[D>S-1].$$
+# $$\Pr[D\ge S]=\sum_{k=0}^{T_S}\Pr[K=k]\,\Pr[N\ge S-k].$$
 #
-# `scipy.stats.binom.sf(k, n, p)` is $\Pr[X>k]$, hence the $S-1$. For $S=0$ it returns 1, as it
-# should (every window has $D\ge0$).
+# With all $p_i = P_D$ it is the notebook's exact count. A binomial with the mean $\bar p$ has the
+# same mean but a *larger* variance than the Poisson-binomial, so it puts the wrong weight in the
+# tails.
 
 # %%
-def p_fa(p_f, w_s, s):
-    return binom.sf(s - 1, w_s, p_f)
+def p_da(p_d_pixels, p_f, w_s, s):
+    pmf = np.array([1.0])
+    for p in p_d_pixels:  # K: one two-point convolution per target pixel
+        pmf = np.convolve(pmf, [1 - p, p])
+    n_noise = w_s - len(p_d_pixels)
+    k = np.arange(len(pmf))
+    return float(np.sum(pmf * binom.sf(s - k - 1, n_noise, p_f)))
 
 
-assert check("track_init_ht.1", p_fa)
-# the explicit sum agrees
-w_s, s, p = 25, 3, P["fig1_p_f"]
-explicit = sum(math.comb(w_s, t) * p ** t * (1 - p) ** (w_s - t) for t in range(s, w_s + 1))
-assert np.isclose(p_fa(p, w_s, s), explicit, rtol=1e-12)
+assert check("track_init_ht.1", p_da)
+spot = np.array([0.9, 0.5, 0.5, 0.2])
+mean_binomial = hyp.area_detection_exact(spot.mean(), P["fig1_p_f"], 5, len(spot), 3)
+display(Markdown(
+    f"Example: pixels {spot.tolist()}, $P_F$ = {P['fig1_p_f']:g}, 5 × 5, S = 3: exact "
+    f"{p_da(spot, P['fig1_p_f'], 25, 3):.4f}, binomial at the mean $\\bar p$ = {spot.mean():.3f}: "
+    f"{mean_binomial:.4f} — the shortcut is not the count (the checker rejects it)."))
 
 # %% [markdown]
-# The common mistake is `binom.sf(s, w_s, p_f)`, which is $\Pr[D > S]$ — the *printed* eq. (2).
-# That the text and eq. (4) say "not fewer than $S$" is how we know eq. (2) is the erratum.
+# ## Exercise 2 — the threshold for a required $P_{FA}$ on another window
 #
-# ## Exercise 2 — the threshold for a required $P_{FA}$
-#
-# $P_{FA}$ falls with $S$, so the answer is the first $S$ at which eq. (4) drops to $10^{-6}$.
+# $P_{FA}$ falls with $S$, so the answer is the first $S$ at which eq. (4) drops to $10^{-8}$;
+# the window has $W_S = 7^2 = 49$ pixels.
 
 # %%
-p_f, window = P["cfar_p_f"], P["window"]
-s_all = np.arange(0, window * window + 1)
-pfa = hyp.area_false_alarm(p_f, window, s_all)
-answer = int(s_all[np.argmax(pfa <= 1e-6)])
-assert answer == hyp.clustering_threshold(p_f, window, 1e-6)
+p_f2, side2, req2 = 0.01, 7, 1e-8
+s_all = np.arange(0, side2 * side2 + 1)
+pfa = binom.sf(s_all - 1, side2 * side2, p_f2)
+answer = int(s_all[np.argmax(pfa <= req2)])
+assert answer == hyp.clustering_threshold(p_f2, side2, req2)
 assert check("track_init_ht.2", answer)
 display(Markdown(
-    f"S = {answer}: $P_{{FA}}$ = {pfa[answer]:.2g}. The paper's S = {P['s']} gives "
-    f"$P_{{FA}}$ = {pfa[P['s']]:.2g}: enough for a requirement of $10^{{-5}}$, not $10^{{-6}}$. "
-    f"In a {E.SequenceSettings().shape[0]}×{E.SequenceSettings().shape[1]} frame that is still "
-    f"about {pfa[P['s']] * np.prod(E.SequenceSettings().shape):.2g} false windows per frame "
-    "before the temporal test."))
+    f"S = {answer}: $P_{{FA}}$ = {pfa[answer]:.2g}; S = {answer - 1} gives {pfa[answer - 1]:.2g}, "
+    f"above the requirement. Common slips: the strict test $D > S$ (one less), or $W_S = 7$."))
 
 # %% [markdown]
 # ## Exercise 3 — how much SNR the exact count needs (the widget question)
 #
 # At log10 $P_F=-2.5$ the false-alarm requirement fixes the smallest admissible $S$; larger $S$
-# only need more SNR. At each admissible $S$, solve exact $P_{DA}(\mathrm{SNR}) = 0.9$.
+# only need more SNR. At each admissible $S$, solve exact $P_{DA}(\mathrm{SNR}) = 0.9$; on the
+# slider's 0.1 grid the answer is the first grid value at or above it (rounding down gives an SNR
+# that does not meet the requirement).
 
 # %%
 p_f3 = 10 ** -2.5
@@ -92,8 +97,12 @@ def snr_needed(s, pda=0.9):
 
 
 need = {s: snr_needed(s) for s in range(s_min, ts3 + 2)}
-answer = min(need.values())
-assert check("track_init_ht.3", round(answer, 1))
+exact_snr = min(need.values())
+answer = math.ceil(exact_snr * 10) / 10
+assert check("track_init_ht.3", answer)
+below = round(answer - 0.1, 1)
+best_below = max(hyp.area_detection_exact(hyp.snr_to_pd(below, p_f3), p_f3, w3, ts3, s)
+                 for s in need)
 
 
 def snr_needed_eq7(s, pda=0.9):
@@ -104,9 +113,10 @@ def snr_needed_eq7(s, pda=0.9):
 
 display(Markdown(
     f"Smallest admissible S = {s_min}; SNR needed for exact $P_{{DA}}$ ≥ 0.9: " + ", ".join(
-        f"S = {s}: {v:.2f}" for s, v in need.items()) + f". Answer: SNR ≈ {answer:.1f}. "
-    f"Eq. (7) would claim SNR {snr_needed_eq7(s_min):.2f} suffices at the same S — the "
-    "paper's 'SNR 2 works' comes from there."))
+        f"S = {s}: {v:.3f}" for s, v in need.items()) + f". Answer on the grid: SNR {answer:g} "
+    f"(at {below:g} the best exact $P_{{DA}}$ is {best_below:.3f} < 0.9). Eq. (7) would claim "
+    f"SNR {snr_needed_eq7(s_min):.2f} suffices at the same S — the paper's 'SNR 2 works' comes "
+    "from there."))
 
 # %%
 pd_need = brentq(lambda q: binom.sf(s_min - 1, ts3, q) - 0.9, 1e-9, 1 - 1e-12)
@@ -117,7 +127,7 @@ display(Markdown(
     f"{norm.isf(p_f3) - norm.isf(pd_need):.2f}."))
 
 # %% [markdown]
-# ## Exercise 4 — why eq. (7) overstates $P_{DA}$
+# ## Exercise 4 — why eq. (7) overstates $P_{DA}$ (a 3 × 3 target)
 #
 # Condition on $k$, the number of detected target pixels, $k\sim\mathrm{Bin}(T_S,P_D)$; the
 # $W_S-T_S$ noise pixels must supply at least $S-k$ more.
@@ -125,8 +135,7 @@ display(Markdown(
 # %%
 p_f4 = P["fig1_p_f"]
 p_d4 = float(hyp.snr_to_pd(2.0, p_f4))
-w4, ts4 = P["fig1_window"], P["fig1_target_pixels"]
-s4 = ts4
+w4, ts4, s4 = P["fig1_window"], 9, 6
 k = np.arange(ts4 + 1)
 terms = binom.pmf(k, ts4, p_d4) * binom.sf(s4 - k - 1, w4 * w4 - ts4, p_f4)
 answer = float(terms.sum())
@@ -134,11 +143,11 @@ assert check("track_init_ht.4", answer)
 eq7 = hyp.area_detection(p_d4, p_f4, w4, ts4, s4)
 p1 = hyp.p1_paper(p_d4, p_f4, w4, ts4)
 display(Markdown(
-    f"Exact $P_{{DA}}$ = {answer:.3g}; eq. (7) = {eq7:.3f}. The term $k = T_S$ (all four target "
-    f"pixels detected, $P_D^4$ = {p_d4 ** 4:.3g}) is {terms[-1] / answer:.0%} of the exact "
-    f"value. Eq. (7) instead gives **every one of the {w4 * w4} pixels** the probability "
-    f"$P_1$ = {p1:.3f}, so it expects {w4 * w4 * p1:.1f} suspicious pixels per window, while the "
-    f"model's mean is $T_S P_D + (W_S - T_S) P_F$ = {ts4 * p_d4 + (w4 * w4 - ts4) * p_f4:.2f}."))
+    f"$P_D$ = {p_d4:.3f}; exact $P_{{DA}}$ = {answer:.3g}; eq. (7) = {eq7:.3f}. Eq. (7) gives "
+    f"**every one of the {w4 * w4} pixels** the probability $P_1$ = {p1:.3f}, so it expects "
+    f"{w4 * w4 * p1:.1f} suspicious pixels per window, while the model's mean is "
+    f"$T_S P_D + (W_S - T_S) P_F$ = {ts4 * p_d4 + (w4 * w4 - ts4) * p_f4:.2f} — below S = {s4}, "
+    "so reaching S needs an unlikely excess."))
 
 # %% [markdown]
 # The error is structural: $P_{0,W_S-T_S}$ is the probability that *at least one* of the
