@@ -226,3 +226,16 @@ def test_scene_helpers():
         assert exp.distance_cdf_square(s, 1.0) == pytest.approx(np.mean(d <= s), abs=0.005)
     with pytest.raises(ValueError, match="side"):
         exp.distance_cdf_square(0.5, 0.0)
+
+
+def test_conflict_term_of_the_chance_rate():
+    """Passing triples sharing a detection are confirmed once: Σ_f E_f² / (2 N_f) fewer."""
+    rng = np.random.default_rng(0)
+    frames = [(float(k), rng.uniform(0, 512, (60, 2))) for k in range(3)]
+    scene = exp.Scene(frames, [np.full(60, -1) for _ in range(3)], 0)
+    kw = dict(v_min=3, v_max=240, sigma_px=0.3, alpha=1e-3, width=512)
+    e = exp.chi2_chance_tracks(scene, conflicts=False, **kw)
+    with_c = exp.chi2_chance_tracks(scene, **kw)
+    assert with_c == pytest.approx(e - 3 * e**2 / (2 * 60), rel=1e-9)
+    assert exp.chi2_chance_tracks(scene, depletion=False, conflicts=False, **kw) == \
+        pytest.approx(60**3 * exp.triplet_chance_probability(0, 1, 2, **kw))
