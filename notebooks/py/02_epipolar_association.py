@@ -75,6 +75,7 @@ from eotrack.geometry import (
 )
 from eotrack.montecarlo import TrialRunner, run_trials
 from eotrack.notebook import dropdown, float_slider, panel, setup_notebook, versions
+from eotrack.plotting import legend_outside
 
 setup_notebook()
 
@@ -564,12 +565,14 @@ f5
 
 # %%
 L6 = np.asarray(P["epipolar.fig6"]["threshold_px"], float)
-fig, axs = plt.subplots(1, 2, figsize=(11, 4), sharey=True)
+fig, axs = plt.subplots(1, 2, figsize=(7.5, 4.2), sharey=True, layout="constrained")
 for ax, mode, title in ((axs[0], "overlapping", "Fig. 6 — overlapping views"),
                         (axs[1], "random_f", "random F")):
     run, an, _ = res6[mode]
     E.plot_fig6({Lv: run[:, i] for i, Lv in enumerate(L6)},
-                {Lv: an[i] for i, Lv in enumerate(L6)}, P["epipolar.fig6"], ax=ax, title=title)
+                {Lv: an[i] for i, Lv in enumerate(L6)}, P["epipolar.fig6"], ax=ax, title=title,
+                legend=False)
+legend_outside(fig, where="below", ncol=5)
 
 # %%
 f6 = E.fig6_table(res6)
@@ -771,13 +774,24 @@ display(Markdown(f"Predicted σ_d = {sig_rms:.2f} px, Monte Carlo rms {mc_rms:.2
 ax = E.plot_distance_check(true_d, sig_rms)
 
 # %% [markdown]
+# This gate is the library's default: `associate(dist, sigma_px=σ)` gates at
+# $\sigma\sqrt{\chi^2_1(0.99)}$ (`chi2_gate`), and an explicit threshold overrides it.
+
+# %%
+from eotrack.geometry import chi2_gate
+
+d_ex = E.pair_distances(draw.obs, 0, 3)
+assert np.array_equal(associate(d_ex, sigma_px=sig_rms), associate(d_ex, chi2_gate(sig_rms)))
+assert np.isclose(chi2_gate(sig_rms), gate99)
+
+# %% [markdown]
 # The gate against the best threshold of the sweep, for several attitude errors, read as a
 # uniform bound (left) and as an rms value (right):
 
 # %%
 gs_bound = E.gate_study(scen, (0.5, 1.0, 2.0), n_draws=N_BEYOND, runner=runner)
 gs_rms = E.gate_study(scen, (0.5, 1.0, 1.5), gaussian=True, n_draws=N_BEYOND, runner=runner)
-fig, axs = plt.subplots(1, 2, figsize=(11, 3.8), sharey=True)
+fig, axs = plt.subplots(1, 2, figsize=(7.5, 3.6), sharey=True, layout="constrained")
 E.plot_gate_study(gs_bound, ax=axs[0])  # titles and x labels say which reading
 E.plot_gate_study(gs_rms, ax=axs[1])
 pd.concat({"attitude read as a uniform bound": gs_bound, "attitude read as rms": gs_rms})

@@ -10,7 +10,7 @@ import pandas as pd
 
 from eotrack.geometry.epipolar import fundamental_from_poses
 from eotrack.geometry.triangulation import closest_points_two_rays
-from eotrack.plotting import get_ax, paper_marker
+from eotrack.plotting import get_ax, legend_outside, paper_marker
 from eotrack.validation import check_int
 
 from .scenario import PAIR_LABELS, PAIRS, Observation, Scenario, frame_chain
@@ -62,8 +62,10 @@ def plot_epipolar_geometry(scenario: Scenario, pair=(0, 3), target: int = 4, *, 
     each image. True scale, noise-free."""
     a, b = _check_pair(scenario, pair)
     j = check_int(target, "target", min_value=0)
-    fig = fig if fig is not None else plt.figure(figsize=(11, 5.2))
-    gs = fig.add_gridspec(2, 2, width_ratios=(1.5, 1))
+    from matplotlib.ticker import MaxNLocator
+
+    fig = fig if fig is not None else plt.figure(figsize=(7.5, 5.6))
+    gs = fig.add_gridspec(2, 2, width_ratios=(1.4, 1))
     ax = fig.add_subplot(gs[:, 0], projection="3d")
     X = scenario.objects_km[j]
     ca, cb = scenario.cameras[a], scenario.cameras[b]
@@ -74,7 +76,7 @@ def plot_epipolar_geometry(scenario: Scenario, pair=(0, 3), target: int = 4, *, 
     for k, cam in enumerate(scenario.cameras):
         hi = k in (a, b)
         ax.scatter(*cam.c, color="tab:blue" if hi else "0.5", s=30 if hi else 12)
-        ax.text(*cam.c, f" O{k + 1}", fontsize=8, color="tab:blue" if hi else "0.4")
+        ax.text(*cam.c, f" O{k + 1}", fontsize=9, color="tab:blue" if hi else "0.4")
         if hi:
             ax.quiver(*cam.c, *(cam.R[2] * 0.6 * np.linalg.norm(X - cam.c)), color="tab:blue",
                       lw=1, arrow_length_ratio=0.05)
@@ -94,12 +96,13 @@ def plot_epipolar_geometry(scenario: Scenario, pair=(0, 3), target: int = 4, *, 
     ax.set_xlim(mid[0] - half, mid[0] + half)
     ax.set_ylim(mid[1] - half, mid[1] + half)
     ax.set_zlim(mid[2] - half, mid[2] + half)
+    for axis in (ax.xaxis, ax.yaxis, ax.zaxis):
+        axis.set_major_locator(MaxNLocator(3))
     ax.set_xlabel("X (km)")
     ax.set_ylabel("Y (km)")
     ax.set_zlabel("Z (km)")
-    ax.set_title(f"sensors {a + 1} and {b + 1} (blue: boresights), epipolar plane "
-                 f"through {scenario.names[j]}", fontsize=9)
-    ax.legend(loc="upper left", fontsize=8)
+    ax.set_title(f"sensors {a + 1}, {b + 1} (blue: boresights),\nepipolar plane through "
+                 f"{scenario.names[j]}", fontsize=9)
     F = fundamental_from_poses(ca.K, ca.R, ca.c, cb.K, cb.R, cb.c)
     px = scenario.true_pixels()
     p1 = np.append(px[a, j], 1.0)
@@ -114,15 +117,16 @@ def plot_epipolar_geometry(scenario: Scenario, pair=(0, 3), target: int = 4, *, 
         axi.set_xlim(-0.5, w - 0.5)
         axi.set_ylim(h - 0.5, -0.5)
         axi.set_aspect("equal")
-        axi.set_title(f"image {k + 1}: trace of the plane = epipolar line of "
-                      f"{scenario.names[j]}'s image in {b + 1 if k == a else a + 1}",
-                      fontsize=8)
+        axi.set_title(f"image {k + 1}: epipolar line of {scenario.names[j]}\n"
+                      f"(its image in {b + 1 if k == a else a + 1})", fontsize=9)
         axi.set_xlabel("u (px)")
         axi.set_ylabel("v (px)")
-        if row == 0:
-            axi.legend(fontsize=7, loc="lower left")
+        axi.xaxis.set_major_locator(MaxNLocator(3))
+        axi.yaxis.set_major_locator(MaxNLocator(3))
+
     fig.suptitle("Epipolar geometry of two star sensors (true scale, noise-free)")
-    fig.tight_layout()
+    fig.tight_layout(rect=(0, 0.07, 1, 1))
+    legend_outside(fig, where="below", ncol=3)
     return fig
 
 
@@ -170,8 +174,12 @@ def plot_triangulation(scenario: Scenario, obs: Observation, pair=(0, 3), target
     ax.set_xlabel("along the lines of sight (km)")
     ax.set_ylabel("across (km)")
     ax.set_zlabel("across (km)")
+    from matplotlib.ticker import MaxNLocator
+
+    for axis in (ax.xaxis, ax.yaxis, ax.zaxis):
+        axis.set_major_locator(MaxNLocator(3))
     ax.set_title(f"Two-ray triangulation of {scenario.names[j]} (one noisy draw)", fontsize=10)
-    ax.legend(fontsize=7, loc="upper left")
+    legend_outside(ax.figure, where="below", ncol=2)
     return ax
 
 
@@ -179,7 +187,7 @@ def plot_frame_chain(scenario: Scenario, k: int = 0, *, fig=None):
     """The chain of frames of eq. (4) for sensor ``k``: J2000 → orbit (LVLH) → body → sensor,
     each frame's axes drawn in J2000 (red x, green y, blue z)."""
     ch = frame_chain(scenario, k)
-    fig = fig if fig is not None else plt.figure(figsize=(12, 3.2))
+    fig = fig if fig is not None else plt.figure(figsize=(7.5, 3.0))
     y, p, r = np.degrees(ch.yaw_pitch_roll_rad)
     panels = [("J2000", np.eye(3), "reference (ECI)"),
               ("orbit (LVLH)", ch.orbit, "from r, v: z nadir, y −h"),
@@ -197,7 +205,7 @@ def plot_frame_chain(scenario: Scenario, k: int = 0, *, fig=None):
             ax.text(*(1.15 * row), lab, color=col, fontsize=9)
         if i == 1:
             ax.quiver(0, 0, 0, *rhat, color="k", lw=1, ls="--", arrow_length_ratio=0.1)
-            ax.text(*(1.1 * rhat), "r", fontsize=8)
+            ax.text(*(1.1 * rhat), "r", fontsize=9)
         ax.set_xlim(-1, 1)
         ax.set_ylim(-1, 1)
         ax.set_zlim(-1, 1)
@@ -210,9 +218,9 @@ def plot_frame_chain(scenario: Scenario, k: int = 0, *, fig=None):
             axa.axis("off")
             axa.annotate("", xy=(0.95, 0.5), xytext=(0.05, 0.5),
                          arrowprops={"arrowstyle": "->", "lw": 2})
-            axa.text(0.5, 0.58, steps[i], ha="center", va="bottom", fontsize=8)
+            axa.set_title(steps[i], fontsize=9, y=0.55)
     fig.suptitle(f"Frames of sensor {k + 1}: R_sensor = M · r(Y, P, R) · R_orbit "
-                 "(grey: J2000 axes)", fontsize=10)
+                 "(grey: J2000 axes)", fontsize=10, y=1.02)
     return fig
 
 
@@ -224,7 +232,7 @@ def plot_threshold_tradeoff(study: ThresholdStudy, threshold: float, *, fig=None
     """
     from matplotlib.ticker import MaxNLocator
 
-    fig = fig if fig is not None else plt.figure(figsize=(10, 3.4), dpi=72)
+    fig = fig if fig is not None else plt.figure(figsize=(7.5, 3.6), dpi=72)
     ax, ax2 = fig.subplots(1, 2)
     th, r = study.curves()
     g = study.gate_px
@@ -242,13 +250,16 @@ def plot_threshold_tradeoff(study: ThresholdStudy, threshold: float, *, fig=None
     ax2.stairs(hf, edges, fill=True, alpha=0.6, color="tab:red", label="false pairs")
     ax2.axvline(g, color="tab:green", lw=4, alpha=0.6)
     ax2.axvline(threshold, color="k", lw=1)
-    ax2.set_xlabel("distance of accepted pairs to the line (px)")
+    ax2.set_xlabel("distance to the line (px)")
+    ax2.set_ylabel("accepted pairs")
+    ax.set_title("errors versus threshold", fontsize=9)
+    ax2.set_title("distances of accepted pairs", fontsize=9)
     for a in (ax, ax2):
         a.xaxis.set_major_locator(MaxNLocator(6))
         a.yaxis.set_major_locator(MaxNLocator(4))
-        a.legend(fontsize=8, loc="upper right")
+    legend_outside(fig, where="below", ncol=3)
     fig.suptitle(_tradeoff_title(study, threshold), fontsize=9)
-    fig.subplots_adjust(left=0.06, right=0.98, bottom=0.15, top=0.88, wspace=0.15)
+    fig.subplots_adjust(left=0.09, right=0.98, bottom=0.36, top=0.80, wspace=0.3)
     return fig
 
 
@@ -257,7 +268,7 @@ def _tradeoff_title(study: ThresholdStudy, threshold: float) -> str:
     e = study.errors
     return (f"L = {threshold:g} px (black): missed {100 * float(now['missed']):.1f} %, "
             f"false {100 * float(now['false']):.1f} %, total "
-            f"{100 * float(now['total']):.1f} % — attitude ±{e.attitude_arcmin:g}′, "
+            f"{100 * float(now['total']):.1f} %\nattitude ±{e.attitude_arcmin:g}′, "
             f"{e.n_false} false targets/map, {study.n_draws} draws (reduced from 300)")
 
 
@@ -325,13 +336,22 @@ def plot_fig3(scenario: Scenario, obs: Observation, images: list[np.ndarray], *,
         img = images[k]
         lo, hi = np.percentile(img, [5, 99.7])
         ax.imshow(np.clip((img - lo) / (hi - lo), 0, 1) ** 0.5, cmap="gray", origin="upper")
-        for xy, lab in zip(obs.points[k], obs.labels[k]):
+        pts_k = obs.points[k]
+        for xy, lab in zip(pts_k, obs.labels[k]):
             if lab >= 0:
                 ax.add_patch(plt.Circle(xy, 9, fill=False, ec="tab:orange", lw=1.2))
-                right = xy[0] < 0.8 * img.shape[1]
-                ax.annotate(scenario.names[lab], xy, xytext=(8 if right else -8, -8),
-                            textcoords="offset points", color="tab:orange", fontsize=8,
-                            ha="left" if right else "right")
+                # label on the side away from the nearest other point (and inside the image)
+                dv = pts_k - xy
+                dist = np.hypot(*dv.T)
+                dist[dist == 0] = np.inf
+                away = -dv[int(np.argmin(dist))] if np.isfinite(dist.min()) else np.ones(2)
+                sx = 1 if (away[0] >= 0 and xy[0] < 0.8 * img.shape[1]) or \
+                    xy[0] < 0.2 * img.shape[1] else -1
+                sy = 1 if away[1] < 0 else -1  # image v grows downwards, points go up
+                ax.annotate(scenario.names[lab], xy, xytext=(8 * sx, 8 * sy),
+                            textcoords="offset points", color="tab:orange", fontsize=9,
+                            ha="left" if sx > 0 else "right",
+                            va="bottom" if sy > 0 else "top")
             else:
                 ax.add_patch(plt.Rectangle(xy - 9, 18, 18, fill=False, ec="tab:red", lw=1.2))
         ax.set_title(f"Star map {k + 1}")
@@ -394,13 +414,16 @@ def plot_fig5(thresholds, accuracy, false_rate, miss_rate, error_rate, *, paper=
     ax.set_xlabel("threshold L (px)")
     ax.set_ylabel("rate (%)")
     ax.set_title("Fig. 5 — association outcome versus threshold")
-    ax.legend(fontsize=8)
+    legend_outside(ax)
     return ax
 
 
 def plot_fig6(running: dict, analytic: dict, paper: dict | None = None, *, ax=None,
-              title: str = "Fig. 6 — Monte Carlo bound on false association"):
-    """Fig. 6: running mean of the bound versus number of simulations, analytic lines."""
+              title: str = "Fig. 6 — Monte Carlo bound on false association",
+              legend: bool = True):
+    """Fig. 6: running mean of the bound versus number of simulations, analytic lines
+    (dashed), the paper's values (one labelled diamond per L). ``legend=False`` leaves the
+    legend to the caller (several panels sharing one: ``legend_outside(fig)``)."""
     ax = get_ax(ax, figsize=(6.4, 4.0))
     for i, (L, curve) in enumerate(running.items()):
         col = f"C{i}"
@@ -410,20 +433,21 @@ def plot_fig6(running: dict, analytic: dict, paper: dict | None = None, *, ax=No
         n = paper["n_simulations"]
         vals = 100 * np.asarray(paper["max_false_rate"])
         paper_marker(ax, [n] * len(vals), vals, label="paper (one per L)")
+        ax.set_ylim(0, 105)
         order = np.argsort(vals)
         ytext = np.asarray(vals, float)[order].copy()
-        for i in range(1, len(ytext)):  # spread the labels at least 8 points apart
-            ytext[i] = max(ytext[i], ytext[i - 1] + 8.0)
+        for i in range(1, len(ytext)):  # spread the labels at least 10 % of the axis apart
+            ytext[i] = max(ytext[i], ytext[i - 1] + 10.5)
         for i, yt in zip(order, ytext):
             Lp = paper["threshold_px"][i]
-            ax.annotate(f"paper, L = {Lp:g}: {vals[i]:.0f} %", (n, vals[i]),
-                        xytext=(0.72 * n, yt), textcoords="data", ha="right", va="center",
-                        fontsize=9, color=f"C{i}",
-                        arrowprops={"arrowstyle": "-", "color": f"C{i}", "lw": 0.8})
+            ax.text(0.72 * n, yt, f"paper, L = {Lp:g}: {vals[i]:.0f} % ", ha="right",
+                    va="center", fontsize=9, color=f"C{i}")
+            ax.plot([0.72 * n, 0.985 * n], [yt, vals[i]], color=f"C{i}", lw=0.8)
     ax.set_xlabel("number of simulations")
     ax.set_ylabel("max. false-association rate (%)")
     ax.set_title(title)
-    ax.legend(fontsize=8, ncol=2)
+    if legend:
+        legend_outside(ax)
     return ax
 
 
@@ -432,21 +456,28 @@ def plot_fig8(scenario: Scenario, estimates: dict[str, dict], *, ax=None):
     if ax is None:
         fig = plt.figure(figsize=(6.4, 5.0))
         ax = fig.add_subplot(projection="3d")
+    ref = np.asarray(next(iter(estimates.values()))["truth"], float)  # the first truth
     for i, (name, e) in enumerate(estimates.items()):
         col = f"C{i}"
         if e["pairs"]:
-            P = np.stack(list(e["pairs"].values()))
+            P = np.stack(list(e["pairs"].values())) - ref
             ax.scatter(*P.T, color=col, marker="^", s=40, alpha=0.7,
                        label=f"{name} pair estimates ({len(P)})")
-        ax.scatter(*e["combined"], color=col, marker="x", s=70, label=f"{name} combined")
-        ax.scatter(*e["truth"], color=col, marker="o", s=50, facecolors="none",
+        ax.scatter(*(e["combined"] - ref), color=col, marker="x", s=70,
+                   label=f"{name} combined")
+        ax.scatter(*(e["truth"] - ref), color=col, marker="o", s=50, facecolors="none",
                    label=f"{name} truth")
-        ax.plot(*np.stack([e["truth"], e["combined"]]).T, color=col, lw=1, ls=":")
-    ax.set_xlabel("X (km)")
-    ax.set_ylabel("Y (km)")
-    ax.set_zlabel("Z (km)")
+        ax.plot(*(np.stack([e["truth"], e["combined"]]) - ref).T, color=col, lw=1, ls=":")
+    from matplotlib.ticker import MaxNLocator
+
+    for axis in (ax.xaxis, ax.yaxis, ax.zaxis):
+        axis.set_major_locator(MaxNLocator(4))
+    first = next(iter(estimates))
+    ax.set_xlabel(f"ΔX from {first} truth (km)")
+    ax.set_ylabel("ΔY (km)")
+    ax.set_zlabel("ΔZ (km)")
     ax.set_title("Fig. 8 — GEO1 and GEO5 in J2000 (dotted: error)")
-    ax.legend(fontsize=7, loc="upper left")
+    legend_outside(ax.figure, where="below", ncol=2)
     return ax
 
 
@@ -469,7 +500,7 @@ def plot_gate_study(df: pd.DataFrame, *, ax=None, reading: str | None = None):
     what = "uniform bound" if reading == "bound" else "rms"
     ax.set_xlabel(f"attitude error per angle, {what} (arcmin)")
     ax.set_ylabel("threshold (px)")
-    ax.set_title(f"Best L and gate — attitude as {what}", fontsize=10)
+    ax.set_title(f"Best L and gate, attitude as {reading}", fontsize=10)
     ax.legend(fontsize=8)
     return ax
 
@@ -484,7 +515,8 @@ def plot_distance_check(true_d: np.ndarray, sigma_px: float, *, ax=None):
     ax.plot(x, 2 * np.exp(-0.5 * (x / sigma_px) ** 2) / (np.sqrt(2 * np.pi) * sigma_px),
             label=f"half-normal, predicted σ = {sigma_px:.2f} px")
     ax.set_xlabel("distance to the epipolar line (px)")
-    ax.set_ylabel("density")
-    ax.legend(fontsize=8)
+    ax.set_ylabel("density (1/px)")
+    ax.set_title("True-pair distances against the predicted half-normal", fontsize=10)
+    ax.legend(fontsize=9, loc="upper right")
     return ax
 

@@ -6,8 +6,10 @@ pointings are *built* from the paper's Table 3: sensor 4 sees all nine, so each 
 where sensor 4's line of sight through its Table 3 pixel meets the GEO shell (sensor 4 aimed so
 that GEO1 lands on its Table 5 true position); sensors 1–3 are then turned to the rotation that
 best reproduces their Table 3 pixels while showing exactly the objects Table 3 lists (25 px
-margins). Table 3 is not geometrically consistent, so the pixels of maps 1–3 differ from the
-paper's by tens of pixels — the visibility pattern is exact.
+margins). Table 3 is not geometrically consistent — no attitude of sensors 1–3 meets their
+pixels, even without the visibility constraint — so the pixels of maps 1–3 differ from the
+paper's (the notebook's Table 3 section measures by how much); the visibility pattern is
+exact. GEO5 therefore follows Table 3, not Table 5 (the two disagree; see the notebook).
 
 Errors (§2.1): attitude angles (yaw, pitch, roll of eq. 4) uniform within ±1′, positions uniform
 in a 0.2 km ball, centroid jitter 10 µrad rms per axis (the paper's "10 mrad" is an erratum),
