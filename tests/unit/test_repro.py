@@ -268,3 +268,17 @@ def test_cli_seeds_needs_a_seed_parameter(monkeypatch):
         cli._seeded(mod, "demo")
     with pytest.raises(SystemExit):
         cli.main(["wransac", "--seeds", "-1"])
+
+
+def test_central_summary_counts_the_weakest_central_claim():
+    from eotrack.repro.readme import central_summary
+
+    cards = [{"claims": [{"central": True, "status": "reproduced"}]},
+             {"claims": [{"central": True, "status": "reproduced"},
+                         {"central": True, "status": "contradicted"}]},
+             {"claims": [{"central": True, "status": "partial"},
+                         {"central": False, "status": "not reproduced"}]},
+             {"claims": [{"status": "reproduced"}]}]
+    s = central_summary(cards)
+    assert s.startswith("**Central claims, computed from the scorecards:** 1 of 4 papers")
+    assert "1 contradicted" in s and "1 partial" in s and "1 no central claim marked" in s

@@ -10,7 +10,7 @@ import json
 import re
 from pathlib import Path
 
-__all__ = ["notebook_table", "update_readme"]
+__all__ = ["central_summary", "notebook_table", "update_readme"]
 
 START, END = "<!-- notebooks-table -->", "<!-- /notebooks-table -->"
 
@@ -27,11 +27,40 @@ def _notebook_for(slug: str, notebooks: Path) -> tuple[str, str] | None:
     return None
 
 
+def central_summary(cards: list[dict]) -> str:
+    """One computed sentence: how many papers have their central claim(s) reproduced.
+
+    A paper counts as reproduced only if every central claim is ``reproduced``.
+    """
+    from collections import Counter
+
+    n = len(cards)
+    verdicts = []
+    for c in cards:
+        st = [str(r["status"]) for r in c.get("claims", []) if r.get("central")]
+        if not st:
+            verdicts.append("no central claim marked")
+        elif all(x == "reproduced" for x in st):
+            verdicts.append("reproduced")
+        else:
+            # the paper's verdict is its weakest central claim
+            order = ["contradicted", "not reproduced", "not reproducible", "partial"]
+            verdicts.append(next(o for o in order if o in st))
+    cnt = Counter(verdicts)
+    rest = ", ".join(f"{k} {v}" for v, k in sorted(cnt.items()) if v != "reproduced")
+    return (f"**Central claims, computed from the scorecards:** {cnt.get('reproduced', 0)} of {n} "
+            f"papers have their central claim(s) reproduced" + (f"; {rest}" if rest else "")
+            + " (a paper counts as its weakest central claim).")
+
+
 def notebook_table(root: Path) -> str:
-    """Markdown table: one row per notebook with its paper and computed scorecard summary."""
+    """Markdown: the computed central-claim sentence, then one row per notebook with its paper,
+    the verdict on its central claim(s) and its scorecard summary."""
     rows = []
+    cards = []
     for card in sorted((root / "papers_repro").glob("*/scorecard.json")):
         data = json.loads(card.read_text())
+        cards.append(data)
         slug = data["slug"]
         nb = _notebook_for(slug, root / "notebooks")
         if nb is None:
@@ -43,7 +72,7 @@ def notebook_table(root: Path) -> str:
                            f"| [{slug}](papers_repro/{slug}/REPORT.md): {data['summary']} |"))
     head = ("| # | notebook | paper | verdict on the central claim | scorecard (last "
             "`make repro`) |\n|---|---|---|---|---|")
-    return "\n".join([head, *[r for _, r in sorted(rows)]])
+    return "\n".join([central_summary(cards), "", head, *[r for _, r in sorted(rows)]])
 
 
 def update_readme(root: Path) -> bool:
