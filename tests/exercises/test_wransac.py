@@ -9,32 +9,48 @@ import pytest
 from eotrack.exercises import check, exercise_ids
 from eotrack.experiments import wransac as W
 from eotrack.montecarlo import TrialRunner
+from scipy.stats import f as f_dist
 
 SLUG = "wransac"
 
 
-def _gm72():
-    # independent of the library's gauss_markov: the normal equations by hand
-    sc = W.make_scenario()
-    t = sc.t_obs_s
-    tau = t - t.mean()
+def _design(t_ref):
     w = 7.2921150e-5
 
     def row(x):
-        x = np.atleast_1d(x) - t.mean()
+        x = np.atleast_1d(x) - t_ref
         return np.stack([np.sin(w * x), np.cos(w * x), np.ones_like(x), x / 3600.0], -1)
 
-    a = row(t)
-    ap = row(t[-1] + 72 * 60.0)[0]
-    assert a.shape == (len(tau), 4)
-    return 3.0 * float(np.sqrt(ap @ np.linalg.solve(a.T @ a, ap)))
+    return row
+
+
+def _gm(n_inliers: int, minutes: float, sigma: float = 3.0, from_last_inlier: bool = False):
+    # independent of the library's gauss_markov: the normal equations by hand
+    sc = W.make_scenario()
+    t = sc.t_obs_s
+    row = _design(t.mean())
+    a = row(t[:n_inliers])
+    t0 = t[n_inliers - 1] if from_last_inlier else t[-1]
+    ap = row(t0 + minutes * 60.0)[0]
+    return sigma * float(np.sqrt(ap @ np.linalg.solve(a.T @ a, ap)))
 
 
 @lru_cache(maxsize=1)
-def _budget_u3():
-    err = W.budget_sweep(budgets=W.BUDGETS, methods=W.BUDGET_METHODS,
-                         runner=TrialRunner(progress=False))
-    return float(W.budget_table(err, W.BUDGETS, W.BUDGET_METHODS).loc[3, "ransac"])
+def _budget_err():
+    return W.budget_sweep(budgets=W.BUDGETS, methods=W.BUDGET_METHODS,
+                          runner=TrialRunner(progress=False))
+
+
+def _within(u: int, method: str, bound: float) -> float:
+    # by hand from the error array: each run's worst |error| over the 72-min grid
+    e = _budget_err()[:, W.BUDGETS.index(u), W.BUDGET_METHODS.index(method)]
+    return float(np.mean(np.abs(e).max(axis=-1) <= bound))
+
+
+@lru_cache(maxsize=1)
+def _ratio():
+    res = W.run_prediction_experiment(methods=W.MAIN_METHODS, runner=TrialRunner(progress=False))
+    return W.variance_ratio(res, "wransac", "ransac", "dec", 72, n_boot=10)[0]
 
 
 def _wls(a, y, w):
@@ -44,20 +60,31 @@ def _wls(a, y, w):
 
 RIGHT = {
     "wransac.1": lambda: (5 + 3) * (5 - 2) / (5 * (5 + 1)),
-    "wransac.2": _gm72,
-    "wransac.3": _budget_u3,
-    "wransac.4": lambda: "b",
+    "wransac.2": lambda: _gm(60, 45),
+    "wransac.3": lambda: _within(5, "cauchy_ransac", 15.0),
+    "wransac.4": lambda: float(f_dist.cdf(1 / _ratio(), 19, 19)),
     "wransac.5": lambda: _wls,
 }
 
-WRONG = {
-    "wransac.1": lambda: 1.0,  # "OLS is already optimal"
-    "wransac.2": lambda: 3.0,  # σ itself: forgets the extrapolation leverage
-    "wransac.3": lambda: _budget_u3() + 0.2,
-    "wransac.4": lambda: "a",
-    "wransac.5": lambda: (lambda a, y, w: np.linalg.lstsq(np.asarray(a), np.asarray(y),
-                                                          rcond=None)[0]),  # ignores w
-}
+# the wrong answers a student would give, each with its mistake
+WRONG = [
+    ("wransac.1", lambda: 1.0),  # "OLS is already optimal"
+    ("wransac.1", lambda: (3 + 3) * (3 - 2) / (3 * (3 + 1))),  # ν = 3 (the notebook's) not 5
+    ("wransac.2", lambda: 3.0),  # σ itself: forgets the extrapolation leverage
+    ("wransac.2", lambda: _gm(80, 45)),  # ignores the clouds: all 80 points inliers
+    ("wransac.2", lambda: _gm(80, 72)),  # the all-inlier 72-min value printed in section 4.7
+    ("wransac.2", lambda: _gm(60, 45) ** 2),  # a variance, not a standard deviation
+    ("wransac.2", lambda: _gm(60, 45, from_last_inlier=True)),  # 45 min after the 60th point
+    ("wransac.3", lambda: _within(5, "cauchy_ransac", 27.0)),  # the 27″ bound of the table
+    ("wransac.3", lambda: _within(3, "cauchy_ransac", 15.0)),  # U = 3
+    ("wransac.3", lambda: _within(5, "ransac", 15.0)),  # RANSAC, not the Cauchy polish
+    ("wransac.4", lambda: 0.5),  # "a coin toss"
+    ("wransac.4", lambda: float(f_dist.cdf(_ratio(), 19, 19))),  # P(ratio estimate < r)
+    ("wransac.4", lambda: float(f_dist.cdf(1 / _ratio(), 20, 20))),  # 20 dof, not 19
+    ("wransac.4", lambda: float(1 - f_dist.cdf(1 / _ratio(), 19, 19))),  # the complement
+    ("wransac.5", lambda: (lambda a, y, w: np.linalg.lstsq(np.asarray(a), np.asarray(y),
+                                                           rcond=None)[0])),  # ignores w
+]
 
 BAD = {
     "wransac.1": ("0.8", TypeError),
@@ -78,9 +105,9 @@ def test_right_answer_passes(ex):
     assert check(ex, RIGHT[ex]())
 
 
-@pytest.mark.parametrize("ex", sorted(WRONG))
-def test_wrong_answer_fails(ex):
-    res = check(ex, WRONG[ex]())
+@pytest.mark.parametrize(("ex", "wrong"), WRONG)
+def test_wrong_answer_fails(ex, wrong):
+    res = check(ex, wrong())
     assert not res
     assert "hint" in res.message
 

@@ -75,6 +75,18 @@ def test_core_numbers(rep):
     budget = rep.data["budget"]
     assert budget["ransac"].iloc[0] < budget["ransac"].iloc[-1]
     assert len(rep.data["generalisation"]) >= 4
+    # Beyond: the orbit fit against the sinusoid predictors on common data
+    orbit = rep.data["orbit"]
+    assert len(orbit) == 5 and "orbit" in orbit["worst"].columns
+    drift = [k for k in orbit.index if "drifting" in k]
+    assert len(drift) == 2
+    # measured: on the drifting objects the orbit fit's typical run beats even the ideal
+    # sinusoid reference (OLS on the true inliers) by a wide margin
+    med = orbit["median run"]
+    assert (med.loc[drift, "orbit"] * 3 < med.loc[drift, "ideal"]).all()
+    ok, crit = W.orbit_criterion(orbit)
+    assert isinstance(ok, bool) and set(crit.loc[drift, "drifting"]) == {True}
+    assert "Criterion (stated before the run)" in rep.text
 
 
 def test_statistics_rules(rep):
@@ -198,3 +210,28 @@ def test_cli_writes_report(tmp_path):
     assert len(data["claims"]) == 11
     assert (d / "REPORT.md").read_text().count("![") >= 10
     assert len(list((d / "figures").glob("*.png"))) >= 10
+
+
+def test_orbit_helpers_bad_input():
+    with pytest.raises(ValueError, match="methods must be one of"):
+        W.orbit_comparison(n_runs=1, methods=("ransac", "kalman"))
+    with pytest.raises(ValueError, match="dynamics must be one of"):
+        W.orbit_comparison(n_runs=1, dynamics="sgp4")
+    with pytest.raises(ValueError, match="n_runs must be"):
+        W.orbit_comparison(n_runs=0)
+    with pytest.raises(ValueError, match="same shape"):
+        W.absolute_ra(np.zeros(3), np.zeros(2), 10.0)
+    import pandas as pd
+
+    t = pd.DataFrame({("worst", "ransac"): [1.0]}, index=["x"])
+    with pytest.raises(ValueError, match="no 'orbit' column"):
+        W.orbit_criterion(t)
+
+
+def test_orbit_comparison_small_run_is_paired_and_finite():
+    t = W.orbit_comparison(n_runs=2, cases={}, methods=("ransac", "ideal", "orbit"))
+    assert t.shape == (1, 9)
+    assert np.isfinite(t.to_numpy()).all()
+    # the orbit fit sees the same observations as the sinusoid methods: rerun gives the same
+    t2 = W.orbit_comparison(n_runs=2, cases={}, methods=("ransac", "ideal", "orbit"))
+    np.testing.assert_allclose(t["worst"].to_numpy(), t2["worst"].to_numpy())

@@ -35,7 +35,8 @@ from .scenario import (
 )
 from .trials import fit_predict
 
-__all__ = ["ORBIT_CRITERION", "ORBIT_METHODS", "SINUSOID_METHODS", "orbit_comparison",
+__all__ = ["ORBIT_CRITERION", "ORBIT_METHODS", "SINUSOID_METHODS", "absolute_ra",
+           "orbit_comparison",
            "orbit_criterion", "orbit_inputs"]
 
 #: Sinusoid-model predictors compared with the orbit fit.
@@ -59,8 +60,18 @@ def orbit_inputs(sc: Scenario, station: tuple[float, float]) -> dict[str, np.nda
     return {"site_obs": site[:n], "site_pred": site[n:], "ra0_deg": float(sc.extra["ra_deg0"])}
 
 
-def _ra_abs(ra_rel_arcsec: np.ndarray, t_s: np.ndarray, ra0: float) -> np.ndarray:
-    return ra0 + (ra_rel_arcsec + SIDEREAL_RATE_RAD_S * t_s * ARCSEC_PER_RAD) / 3600.0
+def absolute_ra(ra_rel_arcsec: np.ndarray, t_s: np.ndarray, ra0_deg: float) -> np.ndarray:
+    """Topocentric RA (degrees) from the scenario's RA coordinate (arcsec, minus the sidereal
+    rotation, relative to ``ra0_deg`` at t = 0)."""
+    ra = np.asarray(ra_rel_arcsec, float)
+    t = np.asarray(t_s, float)
+    if ra.shape != t.shape:
+        raise ValueError(f"ra_rel_arcsec and t_s must have the same shape, got {ra.shape} and "
+                         f"{t.shape}")
+    return ra0_deg + (ra + SIDEREAL_RATE_RAD_S * t * ARCSEC_PER_RAD) / 3600.0
+
+
+_ra_abs = absolute_ra
 
 
 def _orbit_trial(rng: np.random.Generator, t_obs: np.ndarray, truth_obs: np.ndarray,
