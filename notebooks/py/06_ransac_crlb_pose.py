@@ -775,10 +775,10 @@ if points_needed(*[None] * 6) is not None:
     display(check("ransac_crlb_pose.3", points_needed))
 
 # %% [markdown]
-# **4 (exploration).** The Explore panel's titles give one mean ratio per setting, from 24
-# runs. Is the ratio at the pixel reading (0.01 mm) different from the one at 1 mm, or from 1?
-# Compute the 95 % paired-bootstrap interval asked for below, then the same at 1 mm, and
-# decide what 24 runs can show.
+# **4 (exploration).** The Explore panel's titles give one mean ratio per setting, from a few
+# dozen runs. Is the ratio at the pixel reading (0.01 mm) different from the one at 1 mm, or
+# from 1? Compute the 95 % paired-bootstrap interval asked for below, then the same at 1 mm,
+# and decide what so few runs can show.
 
 # %%
 print(get_checker("ransac_crlb_pose.4").question)

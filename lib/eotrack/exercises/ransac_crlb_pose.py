@@ -114,12 +114,12 @@ register(f"{SLUG}.3", FunctionAnswer(
          "the answer."))
 
 register(f"{SLUG}.4", ArrayAnswer(
-    "The Explore panel shows 24 cached runs. At the pixel reading (noise unit 0.01 mm) with "
+    "The Explore panel shows a few dozen cached runs (E.EXPLORE_RUNS). At the pixel reading (noise unit 0.01 mm) with "
     "the 'pooled' reading, compute the 95 % paired-bootstrap interval (lo, hi) of the mean "
     "attitude-error ratio CRLB selection / RANSAC only over those runs: att, _ = "
     "E.explore_selection(0.01, 'pooled', 0.01); base = the runs' 'att_ransac' from "
     "E.explore_runs(0.01); E.bootstrap_ratio_ci(att, base, seed=0). Then do the same at 1 mm "
-    "and say whether 24 runs can tell the two noise levels apart.",
+    "and say whether that many runs can tell the two noise levels apart.",
     expected=_ex4_expected, rtol=0.03, atol=0.0,
     hint="the ratio is CRLB / RANSAC (not the inverse); the interval, not the point estimate."))
 

@@ -163,9 +163,9 @@ overlap = ci[0.01][1] < ci[1.0][2] and ci[1.0][1] < ci[0.01][2]
 print("both intervals contain 1:", both_contain_one, "| intervals overlap:", overlap)
 
 # %% [markdown]
-# The two titles differ in the second decimal only, and with 24 runs each interval is wide:
-# read the printed intervals — where both contain 1 and overlap, 24 runs show neither a gain
-# nor a difference between the noise levels. The 300-run reproduction is what can resolve an
+# The two titles differ in the second decimal only, and with `E.EXPLORE_RUNS` runs each
+# interval is wide: read the printed intervals — where both contain 1 and overlap, these runs
+# show neither a gain nor a difference between the noise levels. The 300-run reproduction is what can resolve an
 # effect of a few per cent, and even there the status is fragile across seeds. What the pixel
 # reading does change is the spread: without the flip ambiguity the errors are small and
 # homogeneous, and any gain left is the unweighted solver shedding noisy points — the weighted
