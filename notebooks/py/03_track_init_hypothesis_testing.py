@@ -13,35 +13,31 @@
 # moving targets based on hypothesis testing.* Acta Photonica Sinica **37**(3):613–616, 2008
 # [1] (no DOI is printed; the paper is indexed by CNKI).
 #
-# **What the paper does.** Far away, a target on an electro-optical image is a dim blob of a few
-# pixels buried in fluctuating noise; after a threshold, the binary image is full of false
-# points. The paper separates the target from them with two tests. *In space*: a target is a
-# compact cluster of suspicious pixels, while noise pixels are independent — so count the
-# suspicious pixels in a small window and keep the windows that reach a threshold $S$
-# (**spatial clustering**). *In time*: a target reappears near its predicted position frame after
-# frame, while false alarms do not — so follow each candidate through $T$ frames and keep it if
-# it collected at least $T_h$ points (**temporal continuity**). Both tests are analysed with
-# binomial counts (eqs. 4–13, Figs. 1–2) and demonstrated on a deep-space image sequence
-# (Figs. 3–7).
+# **What the paper does.** A distant target is a dim blob of a few pixels in fluctuating noise;
+# after a threshold the binary image is full of false points. Two tests separate the target.
+# *In space*: a target is a compact cluster of suspicious pixels, noise pixels are independent —
+# count the suspicious pixels in a small window and keep windows that reach $S$ (**spatial
+# clustering**). *In time*: a target reappears near its predicted position, false alarms do not —
+# follow each candidate through $T$ frames and keep it with at least $T_h$ points (**temporal
+# continuity**). Both are analysed with binomial counts (eqs. 4–13, Figs. 1–2) and shown on a
+# deep-space sequence (Figs. 3–7).
 #
 # ## Learning objectives
 #
 # After this notebook you can
 #
-# 1. write a detection or false-alarm probability of a counting test as a **binomial tail** and
-#    evaluate it with `scipy.stats.binom`;
-# 2. tell an *exact* count (a sum of two binomials) from a heuristic that merely looks like one
-#    (the paper's eqs. 6–7), and check which one a simulation obeys;
-# 3. decide whether a **Monte Carlo agrees with a closed form** with a binomial confidence
-#    interval, and say what checking many points at once does to that decision;
-# 4. run the paper's pipeline — CFAR segmentation, spatial clustering, temporal test — on an
-#    image sequence and measure its error rates against the formulas;
-# 5. choose the clustering threshold $S$ and the track threshold $T_h$ for a required false-alarm
-#    rate.
+# 1. write the error rates of a counting test as **binomial tails** (`scipy.stats.binom`);
+# 2. tell an *exact* count from a heuristic that looks like one (eqs. 6–7), and check which one a
+#    simulation obeys;
+# 3. decide whether a **Monte Carlo agrees with a closed form** (binomial intervals, many points);
+# 4. run CFAR segmentation, spatial clustering and the temporal test on an image sequence and
+#    measure their error rates against the formulas;
+# 5. choose $S$ and $T_h$ for a required false-alarm rate.
 #
-# **Prerequisites.** Binomial and normal distributions (tail probabilities); thresholding an
-# image. Notebook 04 (logic and Hough track initiation) treats the sequential methods this paper
-# is compared with; it is not needed first.
+# **Prerequisites.** Notebook 01 first, for the reproduction conventions (criteria fixed in
+# `claims.toml` before the run, the scorecard's statuses, seeded Monte Carlo trials); none of its
+# RANSAC material is needed. Binomial and normal tails; thresholding an image. Notebook 04
+# builds on this one.
 #
 # **Scorecard** (written by `make repro` to `papers_repro/track_init_ht/`; recomputed by this
 # notebook in section 6):
@@ -49,9 +45,11 @@
 # %%
 import json
 
+from eotrack.notebook import lesson_header
 from eotrack.repro import papers_repro_dir
 from IPython.display import Markdown, display
 
+lesson_header("03")
 _card = json.loads((papers_repro_dir() / "track_init_ht" / "scorecard.json").read_text())
 display(Markdown(f"**{_card['summary']}** — " + "; ".join(
     f"`{c['claim']}`: {c['status']}" for c in _card["claims"])))
@@ -60,7 +58,6 @@ display(Markdown(f"**{_card['summary']}** — " + "; ".join(
 # ## 2 · Setup
 
 # %%
-from dataclasses import replace
 
 import numpy as np
 import pandas as pd
@@ -77,7 +74,15 @@ from eotrack.imaging import (
     simulate_dim_sequence,
 )
 from eotrack.montecarlo import TrialRunner, binomial_interval, mc_agreement
-from eotrack.notebook import float_slider, int_slider, panel, setup_notebook, toggle, versions
+from eotrack.notebook import (
+    float_slider,
+    int_slider,
+    lesson_footer,
+    panel,
+    setup_notebook,
+    toggle,
+    versions,
+)
 from eotrack.repro import scorecard
 from eotrack.tracking import hypothesis as hyp
 from eotrack.tracking.initiation.temporal import (
@@ -90,10 +95,10 @@ from scipy.stats import binom, norm
 setup_notebook()
 
 # %% tags=["parameters"]
-QUICK = False  # False: the counts of `make repro` (about 30 s idle); True: the test suite's
+QUICK = False  # False: make repro's counts (about 1.5 min on one core); True: the tests' counts
 N = E.trial_counts(quick=QUICK)  # every Monte Carlo below takes its count from N
 SEED = 2008  # for the by-hand steps of section 4 (the reproduction uses the library's seeds)
-N
+pd.Series(N.as_dict(), name="trials").to_frame()
 
 # %%
 versions()
@@ -102,7 +107,7 @@ versions()
 P = E.paper_settings()  # the paper's settings, read from claims.toml
 runner = TrialRunner(progress=False)
 T, TH = P["frames_T"], P["min_hits_T_h"]
-P
+pd.Series({k: str(v) for k, v in P.items()}, name="paper value (claims.toml)").to_frame()
 
 # %% [markdown]
 # ## 3 · Notation
@@ -128,11 +133,9 @@ P
 #
 # ### 4.1 The two tests in one picture
 #
-# Left: one clustering window of a binary image. The target covers $T_S$ pixels (hatched), some
-# of which are detected; noise pixels fire independently. The window is flagged when the count
-# $D$ of suspicious pixels reaches $S$. Right: a candidate followed through $T$ frames; each
-# frame's association gate of $M$ pixels holds a point (a hit) or not. The track is accepted
-# with at least $T_h$ hits.
+# Left: a clustering window; the target covers $T_S$ pixels (hatched), noise pixels fire
+# independently, and the window is flagged when the count $D$ reaches $S$. Right: a candidate
+# through $T$ frames; each gate of $M$ pixels holds a point (hit) or not; $\ge T_h$ hits accept.
 
 # %%
 fig = E.plot_schematic(window=P["window"], s=P["s"], gate=P["gate"], frames=T)
@@ -140,9 +143,9 @@ fig = E.plot_schematic(window=P["window"], s=P["s"], gate=P["gate"], frames=T)
 # %% [markdown]
 # ### 4.2 From SNR to a per-pixel detection probability (the paper's unstated link)
 #
-# The paper plots Fig. 1 "at SNR 1, 2, 3" but never says how SNR turns into $P_D$. We adopt the
-# textbook link [6]: unit-variance Gaussian noise, a threshold $\eta = Q^{-1}(P_F)$ fixed by the
-# false-alarm rate (that is what a CFAR threshold is), and a target pixel of amplitude SNR:
+# The paper plots Fig. 1 "at SNR 1, 2, 3" but never says how SNR gives $P_D$. We adopt the
+# textbook link [6]: unit Gaussian noise, a CFAR threshold $\eta = Q^{-1}(P_F)$, and a target
+# pixel of amplitude SNR:
 #
 # $$P_D = Q\big(Q^{-1}(P_F) - \mathrm{SNR}\big).$$
 #
@@ -164,10 +167,9 @@ assert mc_agreement(k_chk, n_chk, p_d)
 # $$D(i,j,k) = \sum_{m=-p}^{p}\sum_{n=-p}^{p} G(i+m,\,j+n,\,k) \quad (3), \qquad
 # I(i,j,k) = \begin{cases}1 & D(i,j,k) \ge S\\ 0 & \text{otherwise}\end{cases} \quad (2)$$
 #
-# (eq. 2 prints $D > S$; the text and eqs. 4/7 say "not fewer than $S$" — we use $\ge$, see
-# errata). `neighbourhood_count` evaluates the box sum with OpenCV's unnormalised box filter and
-# an integer output, at a cost independent of the window. Check against a brute-force sum and
-# against `scipy.ndimage.uniform_filter`:
+# (eq. 2 prints $D > S$; the text and eqs. 4/7 say "not fewer than $S$": we use $\ge$, see
+# errata). `neighbourhood_count` is an integer box sum (OpenCV), checked against brute force and
+# scipy:
 
 # %%
 g = (rng.random((40, 50)) < 0.2).astype(np.uint8)
@@ -209,10 +211,9 @@ print("P_FA(S = 1..5):", hyp.area_false_alarm(p_f, W, s_grid[:5]))
 # $$P_{0,W_S-T_S} = 1-(1-P_F)^{W_S-T_S} \quad(5),\qquad P_1 = P_D + P_{0,W_S-T_S}\quad(6),\qquad
 # P_{DA} = \sum_{t=S}^{W_S}\binom{W_S}{t}P_1^t(1-P_1)^{W_S-t}\quad(7).$$
 #
-# Eq. (6) is a heuristic: $P_{0,W_S-T_S}$ is the chance that *at least one* of the noise pixels
-# fires, yet eq. (7) gives *every one* of the $W_S$ pixels the probability $P_1$. It can even
-# exceed 1. Under the paper's own pixel model the count is exactly a sum of two independent
-# binomials,
+# Eq. (6) is a heuristic: $P_{0,W_S-T_S}$ is the chance that *at least one* noise pixel fires,
+# yet eq. (7) gives *every* pixel the probability $P_1$, which can exceed 1. Under the paper's
+# own pixel model the count is exactly a sum of two independent binomials,
 #
 # $$D = \mathrm{Bin}(T_S, P_D) + \mathrm{Bin}(W_S-T_S, P_F),\qquad
 # \Pr[D\ge S] = \sum_{k=0}^{T_S} b(k;T_S,P_D)\,\Pr[\mathrm{Bin}(W_S-T_S,P_F)\ge S-k].$$
@@ -241,9 +242,8 @@ display(Markdown(
 # %% [markdown]
 # ### 4.6 Temporal continuity, eqs. (8)–(13)
 #
-# Candidate points of consecutive frames are associated by nearest neighbour inside a square
-# gate $[-n_k, n_k]^2$ of $M=(2n_k+1)^2$ pixels. Over $T$ frames a hypothesis with at least
-# $T_h$ points is a target track.
+# Points of consecutive frames are associated by nearest neighbour in a gate $[-n_k, n_k]^2$ of
+# $M=(2n_k+1)^2$ pixels; a hypothesis with $\ge T_h$ points in $T$ frames is a track.
 #
 # * A *false* track: in each frame the gate holds a false alarm with probability
 #   $P_{0,T}=1-(1-P_F)^M$ (8), so $P_{FT}=\Pr[\mathrm{Bin}(T,P_{0,T})\ge T_h]$ (9).
@@ -253,8 +253,8 @@ display(Markdown(
 # * The *true* track uses only the target's own detections:
 #   $P_{DT}=\Pr[\mathrm{Bin}(T,P_D)\ge T_h]$ (13).
 #
-# Check that the four cases listed under eq. (10) sum to one and that $P_{1,T}$ is exactly
-# "target or any of the other $M-1$ pixels" — eq. (11) is exact, unlike eq. (6):
+# Check: the four cases under eq. (10) sum to one and $P_{1,T}$ is exactly "target or any other
+# pixel" — eq. (11) is exact, unlike eq. (6):
 
 # %%
 M, p_f2 = P["fig2_gate"] ** 2, 0.01
@@ -270,18 +270,15 @@ pd.Series({"P_D": p_d2, "P_FT eq. 9": hyp.track_false_alarm(p_f2, P["fig2_gate"]
 # %% [markdown]
 # ### 4.7 The temporal test as an initiator
 #
-# `TemporalContinuityInitiator` implements the test behind the project's common interface
-# `initiate(frames) -> list[Track]` (`frames` = `(time_s, xy)` per frame). Every candidate point
-# opens a hypothesis; each hypothesis takes the nearest point inside its gate around the
-# predicted position (the last point, then a constant-velocity fit once it has three points);
-# after $T$ frames it is accepted with $\ge T_h$ points and dropped as soon as $T_h$ is out of
-# reach. An accepted track keeps growing and ends after $T-T_h+1$ consecutive misses (a
-# $T_h$-of-$T$ rule, cf. the M-of-N confirmation logic of [9]).
+# `TemporalContinuityInitiator` (`initiate(frames) -> list[Track]`, `frames` = `(time_s, xy)`):
+# every candidate point opens a hypothesis, which takes the nearest point in its gate around the
+# prediction (last point, then constant velocity from three points); it is accepted with
+# $\ge T_h$ points in $T$ frames, dropped once $T_h$ is out of reach, and an accepted track ends
+# after $T-T_h+1$ misses (cf. the M-of-N logic of [9]).
 #
-# Check on a lattice of pure Bernoulli false alarms: the fraction of hypotheses confirmed should
-# be close to eq. (9). A hypothesis starts *on* a point, so it needs $T_h-1$ hits in the $T-1$
-# following frames: $P_{FT}(T-1, T_h-1)$. (With the paper's $T_h$ false tracks are far too rare
-# to count here, so this check uses $T_h = 3$.)
+# Check on pure Bernoulli false alarms: a hypothesis starts *on* a point, so it needs $T_h-1$
+# hits in the next $T-1$ frames, $P_{FT}(T-1, T_h-1)$ (with $T_h = 3$: at the paper's $T_h$ false
+# tracks are too rare to count).
 
 # %%
 p_lat, size, n_fr = 0.005, 150, 40
@@ -299,18 +296,15 @@ print(f"confirmed {n_false} of {n_hyp} hypotheses: rate {rate:.3g}, eq. (9) {pre
 assert 0.6 * pred < rate < 1.4 * pred
 
 # %% [markdown]
-# The measured rate sits a little below eq. (9): once a false track is accepted, the hypotheses
-# that started on its later points (its own sub-tracks, which would pass too) are dropped so that
-# one track is reported once — eq. (9) counts each hypothesis independently. That is why this
-# check uses a tolerance, not the interval test of the next step.
+# The rate sits a little below eq. (9): hypotheses started on an accepted track's later points
+# (its own sub-tracks) are dropped so that one track is reported once, while eq. (9) counts each
+# hypothesis. Hence a tolerance here, not the interval test of 4.9.
 #
-# ### 4.8 One trial by hand: a sequence through the whole pipeline
+# ### 4.8 One trial by hand
 #
-# Before any Monte Carlo, one simulated sequence goes through the paper's steps with the
-# library's primitives: simulate (section 5 describes the scene), CFAR-segment each frame
-# (threshold $=$ local background $+\,Q^{-1}(P_F)\,\sigma$, background and σ from tile medians and
-# MADs as in SExtractor [5]), cluster (eqs. 2–3), collect the candidate points, run the temporal
-# test.
+# One simulated sequence (scene in section 5) through the paper's steps: CFAR-segment each frame
+# (threshold = local background $+\,Q^{-1}(P_F)\,\sigma$, both from tile medians and MADs as in
+# SExtractor [5]), cluster (eqs. 2–3), collect candidate points, run the temporal test.
 
 # %%
 st = E.SequenceSettings.from_paper(P)
@@ -332,17 +326,16 @@ pd.Series({f"pixels above CFAR in frame {k}": int(g_k.sum()),
 # %% [markdown]
 # ### 4.9 Does a Monte Carlo agree with a closed form?
 #
-# A Monte Carlo estimate of a probability is a count: $k$ successes in $n$ trials. The formula's
-# value $p$ *agrees* with it when $p$ lies inside a confidence interval for $k/n$.
-# `mc_agreement` uses the Wilson score interval [2] by default (closed form, sensible even for
-# $k = 0$; the exact Clopper–Pearson interval [3] is the alternative; see [4] for a comparison)
-# at 99.9 % per point — the level fixed in claims.toml before the run.
+# A Monte Carlo estimate is a count, $k$ successes in $n$ trials; a formula's value $p$ *agrees*
+# when it lies in a confidence interval for $k/n$. `mc_agreement` uses the Wilson interval [2]
+# (sensible even for $k = 0$; Clopper–Pearson [3] is the exact alternative, compared in [4]) at
+# 99.9 % per point, the level fixed in claims.toml.
 #
-# **Many points at once.** Checking $m$ points at 99.9 % each, a *correct* formula still leaves
-# at least one interval with probability up to $m \times 0.001$ (Bonferroni [10]; it needs no
-# independence, so it holds for curves estimated from the same samples). The result reports
-# that bound; `familywise=True` widens each interval to $1 - 0.001/m$ instead. Example: the
-# SNR link check of 4.2, and a wrong formula that the same counts reject:
+# **Many points.** Checking $m$ points at 99.9 %, a *correct* formula leaves some interval with
+# probability up to $m \times 0.001$ (Bonferroni [10], valid without independence); the result
+# reports that bound, and `familywise=True` widens each interval to $1 - 0.001/m$. The claims use
+# that, with Clopper–Pearson: far in the tail (one event where $np \approx 0.03$) the Wilson lower
+# bound excludes a correct value. The SNR link of 4.2, and a wrong formula the same counts reject:
 
 # %%
 a_ok = mc_agreement(k_chk, n_chk, p_d)
@@ -353,20 +346,19 @@ lo, hi = binomial_interval(0, N.fig1_windows)
 print(f"k = 0 of {N.fig1_windows:,}: 99.9 % Wilson interval [{float(lo):g}, {float(hi):.3g}]")
 
 # %% [markdown]
-# The last line is why a Monte Carlo cannot check the far tail of Fig. 1: any formula value
-# below that upper bound "agrees" with zero hits. We compare only $S \le 12$ there.
+# The last line is why a Monte Carlo cannot check Fig. 1's far tail: any value below that bound
+# "agrees" with zero hits. We compare only $S \le 12$.
 #
 # ## 5 · Reproduction
 #
-# Every call below uses the library's default seeds and the counts in `N`, exactly as
-# `E.reproduce(quick=QUICK)` does, so the statuses in section 6 are those of the REPORT.
+# Every call uses the library's default seeds and the counts in `N`, as `E.reproduce(quick=QUICK)`
+# does, so section 6's statuses are the REPORT's.
 #
 # ### Fig. 1 — area false-alarm and detection probability versus S
 #
 # Lines: eq. (4) (black), eq. (7) (solid colour), exact count (dashed); markers: Monte Carlo of
-# the pixel model (Gaussian noise, $T_S$ pixels at amplitude SNR, threshold $Q^{-1}(P_F)$). The
-# paper prints no values for its curves, only the settings and the readings (claims.toml), so
-# the comparison is the readings.
+# the pixel model ($T_S$ pixels at amplitude SNR in Gaussian noise, threshold $Q^{-1}(P_F)$). The
+# paper prints no curve values, only settings and readings, so the readings are compared.
 
 # %%
 f1 = E.fig1_monte_carlo(snr=P["fig1_snr"], p_f=p_f, window=W, target_pixels=TS,
@@ -374,10 +366,12 @@ f1 = E.fig1_monte_carlo(snr=P["fig1_snr"], p_f=p_f, window=W, target_pixels=TS,
 ax = E.plot_fig1(f1)
 
 # %%
-agree = {"P_FA eq. (4)": f1.agreement("pfa"), "P_DA exact count": f1.agreement("exact"),
-         "P_DA eq. (7)": f1.agreement("paper")}
+agree = {"P_FA eq. (4)": f1.agreement("pfa", familywise=True, method=E.AGREEMENT_METHOD),
+         "P_DA exact count": f1.agreement("exact", familywise=True, method=E.AGREEMENT_METHOD),
+         "P_DA eq. (7)": f1.agreement("paper", familywise=True, method=E.AGREEMENT_METHOD)}
 for name, a in agree.items():
-    print(f"{name:>17}: {a.summary()}")
+    print(f"{name:>17}: {a.n_points - a.n_outside}/{a.n_points} points inside family-wise "
+          f"99.9 % Clopper–Pearson intervals (each at 1 - 0.001/{a.n_points})")
 assert agree["P_FA eq. (4)"] and agree["P_DA exact count"]
 t1 = f1.table()
 t1[t1["S"].isin([2, 3, 4, 5])].set_index(["SNR", "S"])
@@ -387,15 +381,14 @@ r7, rx = E.fig1_readings(f1, f1.pda_paper), E.fig1_readings(f1, f1.pda_exact)
 best = pd.DataFrame({"eq. (7)": r7["best_pda_at_low_pfa"], "exact count": rx["best_pda_at_low_pfa"]},
                     index=pd.Index(P["fig1_snr"], name="SNR"))
 display(Markdown(
-    f"**Reading Fig. 1.** With eqs. (4) and (7) every reading of the paper appears "
-    f"(all hold: {r7['all_hold']}): $P_{{FA}}$ falls by orders of magnitude per step of $S$, "
-    f"$P_{{DA}}$ falls slowly and rises with SNR. The table below gives the best $P_{{DA}}$ over "
-    f"the $S$ with $P_{{FA}} \\le$ {E.LOW_PFA:g}. **But the Monte Carlo follows the exact count, "
-    f"not eq. (7)** (inside the intervals at {agree['P_DA exact count'].fraction_inside:.0%} "
-    f"versus {agree['P_DA eq. (7)'].fraction_inside:.0%} of the points): with only $T_S$ = {TS} "
-    f"target pixels a window reaches $S > T_S$ only through extra noise pixels, so the true "
-    f"$P_{{DA}}$ collapses with $S$ almost as fast as $P_{{FA}}$. Under the exact count the "
-    f"readings hold: {rx['all_hold']}."))
+    f"**Reading Fig. 1.** With eqs. (4) and (7) every reading of the paper holds "
+    f"({r7['all_hold']}). The table gives the best $P_{{DA}}$ over the $S$ with "
+    f"$P_{{FA}} \\le$ {E.LOW_PFA:g}. **But the Monte Carlo follows the exact count, not eq. (7)** "
+    f"(inside the intervals at {agree['P_DA exact count'].fraction_inside:.0%} versus "
+    f"{agree['P_DA eq. (7)'].fraction_inside:.0%} of the points): with $T_S$ = {TS} target "
+    f"pixels a window reaches $S > T_S$ only through noise pixels, so $P_{{DA}}$ collapses with "
+    f"$S$ almost as fast as $P_{{FA}}$. Under the exact count the readings hold: "
+    f"{rx['all_hold']}."))
 best
 
 # %% [markdown]
@@ -412,35 +405,34 @@ ax = E.plot_fig2(f2)
 
 # %%
 for which, eq in (("pds", "eq. (12)"), ("pdt", "eq. (13)"), ("pft", "eq. (9)")):
-    a = f2.agreement(which)
-    print(f"{eq:>8}: {a.summary()}")
+    a = f2.agreement(which, familywise=True, method=E.AGREEMENT_METHOD)
+    print(f"{eq:>8}: {a.n_points - a.n_outside}/{a.n_points} points inside family-wise 99.9 % "
+          "Clopper–Pearson intervals")
     assert a
 assert np.all(f2.pds >= f2.pdt)
 E.fig2_table(f2, min_hits=TH).set_index("P_F").T
 
 # %% [markdown]
-# $P_{DS}\ge P_{DT}$ everywhere, and the gap vanishes as $P_F$ falls — the paper's reading. Over
-# the whole range it is not monotone, though: at fixed SNR the link makes $P_D$ *rise* with
-# $P_F$, so for large $P_F$ both curves saturate and the gap shrinks again (section 6 gives where
-# it peaks).
+# $P_{DS}\ge P_{DT}$ everywhere and the gap vanishes as $P_F$ falls — the paper's reading — but
+# not monotonically: at fixed SNR the link makes $P_D$ *rise* with $P_F$, so for large $P_F$ both
+# curves saturate and the gap shrinks again (section 6 gives where it peaks).
 #
 # ### The image-sequence experiment (Figs. 3–7): the scene
 #
-# The paper's deep-space sequence is not available. We simulate one (`simulate_dim_sequence`):
-# white noise plus a *fluctuating* background (a smooth random field, three times the noise σ,
-# evolving from frame to frame), the main target (3 × 3 pixels, i.e. FWHM 3 px) on a straight
-# line with a little jitter, and the Fig. 7 target on a curve. The main target's SNR is not
-# given; we solve its peak SNR so that CFAR detects its 3 × 3 core with the paper's stated
-# $P_D$. One sequence is drawn for the pictures (`run_sequence`, the by-hand pipeline of 4.8 —
-# asserted identical), `N.sequences` for the measurements and `N.sweep_runs` per SNR for the
-# Fig. 7 sweep.
+# The paper's sequence is not available; we simulate one (`simulate_dim_sequence`): white noise,
+# a *fluctuating* background (a smooth random field, 3 × the noise σ, evolving frame to frame),
+# the main target (3 × 3 pixels, FWHM 3 px) on a jittered straight line, and the Fig. 7 target on
+# a curve. The main target's peak SNR is solved so that CFAR detects its 3 × 3 core with the
+# paper's $P_D$. One sequence is drawn for Figs. 3–6 (the by-hand pipeline of 4.8, asserted
+# identical), `N.sequences` for the measurements; the Fig. 7 sweep re-runs those sequences.
 
 # %%
 demo = E.run_sequence(np.random.default_rng(E.DEMO_SEED), st, keep=True)
 assert all(np.array_equal(a[1], b[1]) for a, b in zip(demo["frames"], by_hand))
 ex = E.sequence_experiment(st, N.sequences, runner=runner)
 sweep = E.snr_sweep(st, [P["curved_snr"] + dd for dd in E.SWEEP_SNR], N.sweep_runs,
-                    runner=runner)
+                    runner=runner,
+                    paper_runs=ex["runs"] if N.sweep_runs == N.sequences else None)
 paper_vs_ours = E.experiment_table(ex, sweep, st, P)
 frame = st.curved_first + 10
 pd.Series({"image (px)": f"{st.shape[0]} x {st.shape[1]}", "frames": st.n_frames,
@@ -465,11 +457,10 @@ ax = E.plot_fig4(demo, frame, p_f=st.p_f)
 paper_vs_ours[paper_vs_ours["figure"] == "Fig. 4"]
 
 # %% [markdown]
-# The measured $P_F$ is over background pixels far from the targets, pooled over the
-# `N.sequences` sequences; the main target's pixel $P_D$ over its 3 × 3 core. We solved the SNR
-# for a spot centred on a pixel in pure white noise; likely causes of the difference (not
-# measured separately) are the jitter, which moves the spot off the pixel centre, and clutter
-# that the tile estimate of the background misses.
+# $P_F$ is measured on background pixels far from the targets (pooled over the sequences), the
+# main target's $P_D$ over its 3 × 3 core. The SNR was solved for a pixel-centred spot in white
+# noise; likely causes of the difference (not measured separately): jitter moving the spot off
+# the pixel centre, and clutter the tile background misses.
 #
 # ### Fig. 5 — spatial clustering
 
@@ -478,18 +469,16 @@ ax = E.plot_fig5(demo, frame, window=st.window, s=st.s)
 paper_vs_ours[paper_vs_ours["figure"] == "Fig. 5"]
 
 # %% [markdown]
-# The paper says only that clustering removes isolated points. We also measure the spatial test
-# against eq. (4): the fraction of background windows with $D \ge S$, with eq. (4) evaluated at
-# the *measured* $P_F$.
+# The paper says only that clustering removes isolated points. We also measure the fraction of
+# background windows with $D \ge S$ against eq. (4) at the *measured* $P_F$:
 
 # %%
 ex["pfa_table"].set_index("S").T
 
 # %% [markdown]
-# For small $S$ the measurement follows eq. (4); further out the measured tail lies above the
-# binomial. The likely reason: the fluctuating background leaves spatially *correlated* residues
-# that the tile estimate cannot follow, and correlated pixels break the independence eq. (4)
-# rests on. Those residues are the false candidates that survive clustering.
+# For small $S$ the measurement follows eq. (4); further out it lies above. Likely reason: the
+# fluctuating background leaves spatially *correlated* residues the tile estimate cannot follow,
+# breaking eq. (4)'s independence; they are the false candidates that survive clustering.
 #
 # ### Fig. 6 — the temporal test over the sequence
 
@@ -523,24 +512,29 @@ pft.T
 # %% [markdown]
 # ### Fig. 7 — the curved SNR-2 target
 #
-# Left: the paper's setting. Right, **exploratory** (an SNR chosen after seeing the sweep below,
-# so it cannot make the claim): the same scene with the curved target at the smallest swept SNR
-# that is recovered in at least half the runs.
+# One experiment: the sweep re-runs the experiment's own sequences (same scene and noise —
+# common random numbers) changing only the curved target's SNR, so its SNR-2 row *is* the
+# experiment. Each panel is the sweep's first sequence at that SNR; its title gives that
+# sequence's coverage and the count over all runs. Left: the paper's SNR; right, **exploratory**
+# (chosen after seeing the sweep, so it cannot make the claim): the smallest swept SNR recovered
+# in at least half the runs.
 
 # %%
-snr_ok = sweep.loc[sweep["recovered (coverage >= 0.5)"] >= 0.5, "SNR"]
-snr_bright = float(snr_ok.min()) if len(snr_ok) else float(sweep["SNR"].max())
-bright = E.run_sequence(np.random.default_rng(E.DEMO_SEED), replace(st, curved_snr=snr_bright),
-                        keep=True)
-fig = E.plot_fig7({f"curved target SNR {st.curved_snr:g} (paper)": demo,
-                   f"SNR {snr_bright:g} (exploratory)": bright})
+snr_bright = E.snr_for_recovery(sweep)
+fig7_snrs = [st.curved_snr] + ([snr_bright] if np.isfinite(snr_bright) else [])
+fig7_runs = {v: E.sweep_example(st, v, N.sequences) for v in fig7_snrs}
+m_ex = E.experiment_measurement(ex)
+row2 = sweep[sweep["SNR"] == st.curved_snr].iloc[0]
+if N.sweep_runs == N.sequences:  # the sweep's SNR-2 row is the experiment
+    assert row2["recovered runs"] == m_ex["curved_ok"]
+assert np.array_equal(fig7_runs[st.curved_snr]["coverage"], ex["runs"][0]["coverage"])
+fig = E.plot_fig7(fig7_runs, sweep, paper_snr=st.curved_snr)
 
 # %%
 paper_vs_ours[paper_vs_ours["figure"] == "Fig. 7"]
 
 # %% [markdown]
-# How bright must the curved target be? Recovery versus SNR (the curved target alone, a
-# 128 × 128 crop of the same scene, `N.sweep_runs` sequences per SNR):
+# Recovery versus SNR over all `N.sweep_runs` sequences, with 95 % Clopper–Pearson intervals [3]:
 
 # %%
 ax = E.plot_snr_sweep(sweep)
@@ -548,10 +542,13 @@ sweep.set_index("SNR")
 
 # %%
 tab = ex["table"]
+share, lo, hi = E.run_share(m_ex["curved_ok"], m_ex["n_runs"])
 display(Markdown(
-    f"With our SNR definition (peak amplitude / noise σ) the curved target's 3 × 3 core is "
-    f"detected with $P_D$ = {tab['pixel P_D (3x3 core)'].iloc[1]:.2f} at $P_F$ = {st.p_f:g}, so "
-    f"the {st.window} × {st.window} window reaches $S$ = {st.s} in "
+    f"At SNR {st.curved_snr:g} the curved target is recovered in {m_ex['curved_ok']} of "
+    f"{m_ex['n_runs']} sequences (95 % interval [{lo:.0%}, {hi:.0%}]). With our SNR definition "
+    f"(peak amplitude / noise σ) its 3 × 3 core is detected with $P_D$ = "
+    f"{tab['pixel P_D (3x3 core)'].iloc[1]:.2f} at $P_F$ = {st.p_f:g}, so the "
+    f"{st.window} × {st.window} window reaches $S$ = {st.s} in "
     f"{tab['P_DA measured'].iloc[1]:.0%} of frames (exact count "
     f"{tab['P_DA exact'].iloc[1]:.2f}, eq. (7) {tab['P_DA eq.7 (paper)'].iloc[1]:.2f}). The paper "
     "recovers it; its SNR definition (peak? integrated? after pre-filtering?) is not given."))
@@ -564,7 +561,7 @@ display(Markdown(
 # %%
 claims = [E.evaluate_fig1(f1), E.evaluate_fig2(f2, min_hits=TH),
           E.evaluate_experiment(ex, sweep, st)]
-scorecard(claims)[["claim", "ours", "status", "note"]]
+scorecard(claims)[["claim", "kind", "central", "ours", "status", "note"]]
 
 # %%
 # NBVAL_CHECK_OUTPUT
@@ -576,12 +573,10 @@ if not QUICK:  # the full configuration is make repro's: the REPORT must say the
 # %% [markdown]
 # ## 7 · Explore
 #
-# The closed forms for any setting — the trade-off a designer faces. Left: Fig. 1 ($P_{FA}$ and
-# $P_{DA}$ versus $S$, the chosen $S$ marked); right: Fig. 2 at the chosen $P_F$ ($P_{DS}$,
-# $P_{DT}$, $P_{FT}$ versus $T_h$). Closed forms only, no Monte Carlo: every change redraws at
-# once. Try: at the paper's Fig. 1 setting, how much SNR does the exact count need before any
-# $S$ gives both low $P_{FA}$ and high $P_{DA}$ (exercise 3)? What does a larger gate do to
-# $P_{FT}$?
+# The closed forms for any setting. Left: $P_{FA}$, $P_{DA}$ versus $S$ (chosen $S$ marked);
+# right: $P_{DS}$, $P_{DT}$, $P_{FT}$ versus $T_h$ at the chosen $P_F$. No Monte Carlo, so every
+# change redraws at once. Try: how much SNR does the exact count need before some $S$ gives low
+# $P_{FA}$ and high $P_{DA}$ (exercise 3)? What does a larger gate do to $P_{FT}$?
 
 # %%
 explore = panel(
@@ -625,17 +620,17 @@ display(Markdown("\n".join([
     "prediction (the last point until a hypothesis has three), points taken by a confirmed track "
     "open no new hypothesis, a confirmed track ends after $T-T_h+1$ misses.",
     f"* **Fig. 7 is not reproduced** with our SNR definition: the curved target is recovered "
-    f"in {ex['table']['recovered runs'].iloc[1]:.0%} of the runs; the sweep reaches 50 % "
-    f"recovery at SNR {snr_bright:g}. The paper's eq. (7) would predict recovery.",
+    f"in {m_ex['curved_ok']} of {m_ex['n_runs']} runs (95 % interval [{lo:.0%}, {hi:.0%}]); in "
+    f"the same sequences it is recovered in at least half the runs from SNR {snr_bright:g} "
+    "(exploratory). The paper's eq. (7) would predict recovery.",
 ])))
 
 # %% [markdown]
 # ## 9 · Beyond the paper
 #
-# **Design $S$ with the exact count.** For a target of $T_S$ pixels detected with $P_D$ each, a
-# window cannot count more than about $T_S P_D$ target pixels, so $S$ above that rests on noise.
-# The rule: take the smallest $S$ that meets the false-alarm requirement (eq. 4 inverted), then
-# read $P_{DA}$ off the *exact* count, never eq. (7). At the experiment's settings:
+# **Design $S$ with the exact count.** A window counts about $T_S P_D$ target pixels, so $S$
+# above that rests on noise. Take the smallest $S$ meeting the false-alarm requirement (eq. 4
+# inverted), then read $P_{DA}$ off the *exact* count. At the experiment's settings:
 
 # %%
 s_req = hyp.clustering_threshold(st.p_f, st.window, [1e-3, 1e-4, 1e-5, 1e-6])
@@ -649,12 +644,10 @@ pd.DataFrame({"required P_FA": [1e-3, 1e-4, 1e-5, 1e-6], "S": s_req,
                                                                     s_req)})
 
 # %% [markdown]
-# **A real star field as background.** astropy ships a real 300 × 300 sky image (SkyView, the
-# globular cluster M13) in its test data [8]; `m13_star_field` loads it. Stars are static and
-# bright: they pass CFAR and clustering in every frame, so the temporal test confirms them as
-# (stationary) tracks — continuity alone cannot tell a star from a slow target. A per-pixel
-# temporal median subtracted before CFAR removes them (the target here moves 5 px per frame, so
-# the gate is widened to 9 × 9):
+# **A real star field as background** (astropy's 300 × 300 SkyView image of M13 [8],
+# `m13_star_field`). Static stars pass CFAR and clustering in every frame, so the temporal test
+# confirms them as tracks; a per-pixel temporal median subtracted before CFAR removes them (the
+# target moves 5 px per frame, so the gate is 9 × 9):
 
 # %%
 stars = 0.5 * m13_star_field((128, 128))
@@ -675,11 +668,9 @@ for name, imgs in (("raw", seq_st.images),
 pd.DataFrame(res).T
 
 # %% [markdown]
-# **The initiator itself against eqs. (12)–(13).** Eqs. (12)–(13) assume a gate that stays on the
-# target. Our nearest-neighbour initiator re-centres its gate on every point it takes, so a false
-# alarm can pull it off the target. Short sequences of $T$ frames on a 15 × 15 lattice
-# (`N.initiator_sequences` per $P_F$): a stationary SNR-2 target detected with $P_D$ per frame,
-# Bernoulli false alarms with $P_F$:
+# **The initiator against eqs. (12)–(13)**, which assume a gate that stays on the target; ours
+# re-centres on every point it takes. $T$-frame sequences on a 15 × 15 lattice: a stationary
+# SNR-2 target detected with $P_D$, Bernoulli false alarms with $P_F$:
 
 # %%
 ini_mc = E.initiator_monte_carlo(snr=P["fig2_snr"], p_f=E.INITIATOR_P_F, gate=P["fig2_gate"],
@@ -688,53 +679,47 @@ ax = E.plot_initiator_vs_formulas(ini_mc)
 ini_mc.set_index("P_F")
 
 # %% [markdown]
-# With few false alarms both measured rates follow the formulas (with nothing but the target,
-# "a track holds $\ge T_h$ target points" is exactly $P_{DT}$). As $P_F$ grows, false alarms
-# complete target tracks (the "contains the target" rate approaches $P_{DS}$) but also lure the
-# gate away, so the rate of *true* tracks falls below $P_{DT}$ — eq. (13) is an upper bound for
-# nearest-neighbour association, not the rate one gets.
+# With few false alarms both rates follow the formulas. As $P_F$ grows, false alarms complete
+# target tracks (the "contains" rate approaches $P_{DS}$) but also lure the gate away, so *true*
+# tracks fall below $P_{DT}$: eq. (13) bounds nearest-neighbour association from above.
 #
 # **What the analysis misses.** Both closed forms assume independent pixels and a gate that
-# stays put. Real sequences violate both: a fluctuating background leaves *correlated* residues
-# (the measured $P_{FA}$ tail and $P_{FT}$ lie above eqs. 4 and 9), and a nearest-neighbour gate
-# *follows* false points. Use the formulas to choose $S$ and $T_h$, then measure on data.
+# stays put; clutter residues are correlated (measured $P_{FA}$, $P_{FT}$ above eqs. 4, 9) and a
+# nearest-neighbour gate follows false points. Choose $S$, $T_h$ by formula, then measure.
 #
 # ## 10 · Key points
 #
-# * A counting test's error rates are **binomial tails**: $P_{FA}$ (eq. 4), $P_{FT}$ (eq. 9),
-#   $P_{DS}$, $P_{DT}$ (eqs. 12–13) are all $\Pr[\mathrm{Bin}(n,p)\ge k]$ — one `binom.sf` call.
-# * Eq. (7) is **not** the detection probability of the paper's own pixel model. The exact count
-#   is a sum of two binomials, and a Monte Carlo of the model follows it, not eq. (7).
-# * Eq. (6) adds a per-pixel and a per-window probability; it can exceed 1. A formula that can
-#   leave [0, 1] is a red flag before any simulation.
-# * With few target pixels, $S$ above $T_S P_D$ costs detection as fast as it buys false-alarm
-#   rejection: design $S$ by inverting eq. (4), then check $P_{DA}$ with the exact count.
-# * A Monte Carlo agrees with a closed form when the value lies in a binomial confidence
-#   interval; checking $m$ points multiplies the chance of a spurious disagreement by up to $m$.
-# * The temporal test rejects *independent* false alarms; clutter residues that persist, and
-#   static stars, pass it. Background removal (a temporal median) must come first.
+# * Eqs. (4), (9), (12), (13) are **binomial tails**, one `binom.sf` call each.
+# * Eq. (7) is **not** the pixel model's detection probability; the exact count is, and the
+#   Monte Carlo follows it. Eq. (6) can exceed 1 — a red flag before any simulation.
+# * With few target pixels, $S$ above $T_S P_D$ costs detection as fast as it buys rejection:
+#   invert eq. (4) for $S$, then check $P_{DA}$ with the exact count.
+# * Agreement = the value inside a binomial interval; $m$ points need a family-wise correction.
+# * The temporal test rejects *independent* false alarms; persistent clutter and stars pass it.
 #
 # ## 11 · Exercises
 #
-# Check an answer with `check("track_init_ht.k", answer)`; it says right or wrong and gives a
-# hint, never the solution. Worked solutions: `notebooks/solutions/03_track_init_ht_solutions.ipynb`.
+# `check("track_init_ht.k", answer)` says right or wrong with a hint. Worked solutions:
+# `notebooks/solutions/03_track_init_ht_solutions.ipynb`.
 #
-# **Exercise 1 (derivation).** In a window of $W_S$ noise pixels, each suspicious with
-# probability $P_F$ independently, show that eq. (4) is $\Pr[\mathrm{Bin}(W_S, P_F) \ge S]$.
-# Then write `p_fa(p_f, w_s, s)` (`w_s` = number of pixels) returning it.
+# **Exercise 1 (derivation).** A real spot (eq. 1) is brighter at its centre, so target pixel
+# $i$ is suspicious with its own probability $p_i$, not one common $P_D$. Show that the count is
+# then $D=\sum_{i=1}^{T_S}\mathrm{Bernoulli}(p_i)+\mathrm{Bin}(W_S-T_S,P_F)$ (a Poisson-binomial
+# plus a binomial) and write `p_da(p_d_pixels, p_f, w_s, s)` returning the exact
+# $\Pr[D\ge S]$ (`p_d_pixels`: the $T_S$ probabilities; `w_s` = number of pixels). Is a binomial
+# with the mean $\bar p$ the same?
 
 # %%
-def p_fa(p_f, w_s, s):
+def p_da(p_d_pixels, p_f, w_s, s):
     return None  # your code here
 
 
-if p_fa(0.003, 25, 3) is not None:
-    check("track_init_ht.1", p_fa)
+if p_da([0.9, 0.5, 0.5, 0.2], 0.003, 25, 3) is not None:
+    check("track_init_ht.1", p_da)
 
 # %% [markdown]
-# **Exercise 2 (computation).** The experiment segments at the paper's CFAR $P_F$ and clusters
-# in its 5 × 5 window. What is the smallest $S$ whose $P_{FA}$ is at most $10^{-6}$? Is the
-# paper's $S$ enough for that requirement?
+# **Exercise 2 (computation).** Another sensor segments at $P_F = 0.01$ and clusters in a
+# 7 × 7 window. What is the smallest $S$ whose $P_{FA}$ (eq. 4) is at most $10^{-8}$?
 
 # %%
 answer = None  # your S here
@@ -743,8 +728,9 @@ if answer is not None:
 
 # %% [markdown]
 # **Exercise 3 (exploration, with the panel of section 7).** Set log10 $P_F$ = −2.5, window
-# 5 × 5, $T_S$ = 4. What is the smallest SNR (to 0.1) at which some $S$ gives
-# $P_{FA} \le 10^{-4}$ and an **exact** $P_{DA} \ge 0.9$? Compare with what eq. (7) suggests.
+# 5 × 5, $T_S$ = 4. Raising the SNR in steps of 0.1, what is the smallest SNR at which some $S$
+# gives $P_{FA} \le 10^{-4}$ and an **exact** $P_{DA} \ge 0.9$? Compare with what eq. (7)
+# suggests.
 
 # %%
 answer = None  # your SNR here
@@ -752,9 +738,9 @@ if answer is not None:
     check("track_init_ht.3", answer)
 
 # %% [markdown]
-# **Exercise 4 (critique: eq. 7).** At Fig. 1's setting and SNR 2, eq. (7) gives $P_{DA}$ near
-# 0.96 at $S = 4$. Compute the exact $P_{DA}$ at $S=4$ and explain, with the count, why eq. (7)
-# overstates it.
+# **Exercise 4 (critique: eq. 7).** Keep Fig. 1's window and $P_F$ and SNR 2, but take a
+# 3 × 3 target ($T_S = 9$, as in the experiment) and $S = 6$. Compute the exact $P_{DA}$, compare
+# it with eq. (7) at the same setting and explain, with the count, the difference.
 
 # %%
 answer = None  # your probability here
@@ -795,3 +781,6 @@ if answer is not None:
 #    1999 (track initiation and confirmation; ISBN 1-58053-006-0).
 # 10. Dunn O.J. Multiple comparisons among means. *J. Am. Stat. Assoc.* 56(293):52–64, 1961.
 #     doi:10.1080/01621459.1961.10482090
+
+# %%
+lesson_footer("03")
