@@ -90,6 +90,11 @@ def test_root_seed_changes_runs_and_is_repeatable():
     b = exp.reproduce(quick=True, runner=TrialRunner(progress=False), seed=2)
     assert [r.status for r in a.claims] == [r.status for r in b.claims]
     assert a.data["runs"]["pos_ransac"].equals(b.data["runs"]["pos_ransac"])
+    # the exploratory pooled runs are the same runs as reproduce(seed=s) makes
+    pooled = exp.pooled_seed_runs((2,), n_runs=60, runner=TrialRunner(progress=False))
+    ok = a.data["runs"][a.data["runs"]["success"]]
+    np.testing.assert_array_equal(pooled["pos_pooled"].to_numpy(), ok["pos_pooled"].to_numpy())
+    assert set(pooled["root_seed"]) == {2}
     c = exp.reproduce(quick=True, runner=TrialRunner(progress=False), seed=3)
     assert not a.data["runs"]["pos_ransac"].equals(c.data["runs"]["pos_ransac"])
     with pytest.raises(ValueError, match="seed"):

@@ -19,6 +19,7 @@ from dataclasses import asdict, replace
 
 import matplotlib.pyplot as plt
 import numpy as np
+import pandas as pd
 
 from eotrack.montecarlo import TrialRunner
 from eotrack.plotting import FIG_WIDTH_IN
@@ -118,9 +119,11 @@ __all__ = [
     "plot_error_ecdf",
     "plot_monotonicity",
     "plot_selected_fraction",
+    "pooled_seed_runs",
     "pose_errors",
     "readings_table",
     "reproduce",
+    "root_seeds",
     "run_pose_experiment",
     "run_trial",
     "select_and_refit",
@@ -139,6 +142,44 @@ TABLE_READINGS = ("Readings of the §2.4 rule versus RANSAC alone (paired; prima
 TABLE_COUNTS = "Fig. 6 — points per method (80-run set)"
 
 
+def root_seeds(seed: int | None, settings: Settings | None = None) -> dict[str, int]:
+    """The seeds of every generator of a run, derived from the root ``seed``.
+
+    ``None`` = the committed default run (``settings.seed`` and the studies' fixed seeds); an
+    int = ``np.random.SeedSequence(seed).spawn(6)``: keys ``runs`` (Figs. 4–5), ``counts``
+    (Fig. 6), ``boot`` (bootstrap intervals), ``mono``, ``eff``, ``budget``.
+    """
+    st = settings or Settings()
+    if seed is None:
+        return dict(runs=st.seed, counts=st.seed + 1, boot=0, mono=st.seed, eff=7, budget=11)
+    if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or seed < 0:
+        raise ValueError(f"seed must be None or a non-negative int, got {seed!r}")
+    kids = np.random.SeedSequence(int(seed)).spawn(6)
+    return {k: int(c.generate_state(1, np.uint32)[0])
+            for k, c in zip(("runs", "counts", "boot", "mono", "eff", "budget"), kids)}
+
+
+def pooled_seed_runs(seeds: tuple[int | None, ...] = (None, 1, 2, 3, 4, 5), *,
+                     n_runs: int | None = None, reading: str | None = None,
+                     runner: TrialRunner | None = None) -> pd.DataFrame:
+    """Exploratory: the Figs. 4–5 runs of several root seeds, RANSAC vs one reading, stacked.
+
+    The same runs as ``reproduce(seed=s)`` makes for each ``s`` (``None`` = the default run),
+    restricted to ``reading`` (default: the primary reading), with a ``root_seed`` column —
+    six times the paper's count for a tighter paired interval. Pooling was decided after the
+    seeds' statuses were seen: it cannot decide a status.
+    """
+    st0 = Settings()
+    reading = reading or load_protocol()["primary_reading"]
+    st = replace(st0, readings=(reading,))
+    n = st0.n_runs if n_runs is None else n_runs
+    out = []
+    for s in seeds:
+        df = run_pose_experiment(n, settings=st, runner=runner, seed=root_seeds(s, st0)["runs"])
+        out.append(df[df["success"]].assign(root_seed=-1 if s is None else int(s)))
+    return pd.concat(out, ignore_index=True)
+
+
 def reproduce(*, quick: bool = False, runner: TrialRunner | None = None,
               scenario: Scenario | None = None,
               settings: Settings | None = None, seed: int | None = None) -> Reproduction:
@@ -154,14 +195,8 @@ def reproduce(*, quick: bool = False, runner: TrialRunner | None = None,
     """
     sc = scenario or Scenario()
     st = settings or Settings()
-    if seed is None:
-        seeds = dict(runs=st.seed, counts=st.seed + 1, boot=0, mono=st.seed, eff=7, budget=11)
-    else:
-        if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or seed < 0:
-            raise ValueError(f"seed must be None or a non-negative int, got {seed!r}")
-        kids = np.random.SeedSequence(int(seed)).spawn(6)
-        seeds = {k: int(c.generate_state(1, np.uint32)[0])
-                 for k, c in zip(("runs", "counts", "boot", "mono", "eff", "budget"), kids)}
+    seeds = root_seeds(seed, st)
+    if seed is not None:
         st = replace(st, seed=seeds["runs"])
     claims = load_claims(SLUG)
     proto = load_protocol()
