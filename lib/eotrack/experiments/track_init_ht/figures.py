@@ -327,7 +327,7 @@ def plot_snr_sweep(df: pd.DataFrame, *, ax: plt.Axes | None = None) -> plt.Axes:
     ax.set_ylabel("fraction")
     ax.set_ylim(-0.03, 1.03)
     ax.set_title("Fig. 7 target: recovery versus SNR (same scene, same noise)")
-    ax.legend(fontsize=7, loc="center right")
+    ax.legend(fontsize=7, loc="upper left")
     return ax
 
 
