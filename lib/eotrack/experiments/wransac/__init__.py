@@ -341,13 +341,13 @@ def reproduce(*, quick: bool = False, runner: TrialRunner | None = None,
         ("fig3_flowchart", lambda ax: plot_flowchart(ax=ax), (6.5, 7.2)),
         ("mechanism_pull", lambda ax: plot_pull(res, ax=ax), (5.5, 4.5)),
         ("mechanism_leverage", lambda ax: plot_leverage(res, ax=ax), (6, 3.8)),
-        ("ratio_table_dec", lambda ax: plot_ratio_table(ratios, "dec", ax=ax), (7, 3.8)),
+        ("ratio_table_dec", lambda ax: plot_ratio_table(ratios, "dec", ax=ax), None),
         ("beyond_threshold_sensitivity", lambda ax: plot_threshold_sensitivity(sens, ax=ax),
          None),
         ("beyond_eclipse_season", lambda ax: plot_eclipse_season(sc, ax=ax), None),
-        ("beyond_generalisation", lambda ax: plot_generalisation(worst, ax=ax), (8, 4)),
+        ("beyond_generalisation", lambda ax: plot_generalisation(worst, ax=ax), None),
         ("beyond_orbit_fit", lambda ax: plot_generalisation(
-            orbit, ax=ax, title="Orbit fit vs sinusoid predictors"), (8, 4)),
+            orbit, ax=ax, title="Orbit fit vs sinusoid predictors"), None),
     ]
     for name, fn, size in specs:
         fig, ax = plt.subplots(figsize=size) if size else plt.subplots()

@@ -10,7 +10,15 @@ import pandas as pd
 from matplotlib.patches import FancyArrowPatch, FancyBboxPatch
 from matplotlib.ticker import FuncFormatter, NullLocator
 
-from eotrack.plotting import get_ax, paper_marker
+from eotrack.plotting import (
+    get_ax,
+    label_axes,
+    legend_outside,
+    log_axis,
+    method_style,
+    paper_marker,
+    series_styles,
+)
 from eotrack.robust import (
     min_samples_real,
     msac_loss,
@@ -51,6 +59,18 @@ METHOD_LABELS = {
 }
 
 
+def _styles(names: list[str]) -> list:
+    """House style per method name; names without one get distinct series styles."""
+    spare = iter(series_styles(len(names) + 8)[8:])
+    out = []
+    for n in names:
+        try:
+            out.append(method_style(n))
+        except KeyError:
+            out.append(next(spare))
+    return out
+
+
 def plot_min_samples(confidence: float = 0.99, sample_sizes=(4, 7, 8), *, paper: dict | None = None,
                      ax: plt.Axes | None = None) -> plt.Axes:
     """Fig. 1: U versus outlier ratio ε (eq. 2), log scale."""
@@ -77,8 +97,8 @@ def plot_losses(t: float = 1.0, *, ax: plt.Axes | None = None) -> plt.Axes:
     ax.plot(e, msac_loss(e, t, "squared"), ls=":", label="usual MSAC e²/t²")
     ax.plot(e, sinusoidal_loss(e, t), lw=2.2, label="$L_s$ corrected: ½ − ½cos(πe/t)")
     ax.plot(e, sinusoidal_loss_as_printed(e, t), ls="--", label="$L_s$ as printed (erratum)")
-    ax.set(xlabel="error e / t", ylabel="loss", title="Fig. 2 — loss functions")
-    ax.legend(fontsize=8, loc="lower left")
+    label_axes(ax, x="error $e/t$", y="loss $L(e)$", title="Fig. 2 — loss functions")
+    legend_outside(ax, where="below", ncol=2)
     return ax
 
 
@@ -237,16 +257,19 @@ def plot_ratio_table(table: pd.DataFrame, coord: str = "dec", *,
     """Forest plot of the variance ratios to RANSAC with their 95 % intervals."""
     ax = get_ax(ax, figsize=(7, 3.8))
     sub = table.xs(coord, level="coordinate")
-    labels = [f"{n} · {m}" for n, m in sub.index]
+    labels = [f"{str(n).split()[0]} · {str(m).replace('WRANSAC, weights from ', '')}"
+              for n, m in sub.index]
     y = np.arange(len(sub))[::-1]
     r = sub["var ratio to RANSAC"].to_numpy()
     err = np.stack([r - sub["95 % lo"].to_numpy(), sub["95 % hi"].to_numpy() - r])
     ax.errorbar(r, y, xerr=err, fmt="o", capsize=3)
     ax.axvline(1.0, c="k", lw=0.8)
-    ax.set_yticks(y, labels, fontsize=8)
+    ax.set_yticks(y, labels)
     ax.set_xscale("log")
-    ax.set(xlabel="variance ratio to RANSAC (72-min window, paired, 95 % bootstrap)",
-           title=f"Which reading × noise gives the paper's ordering? ({coord})")
+    log_axis(ax, "x")
+    label_axes(ax, x="variance ratio to RANSAC (72 min, paired, 95 % bootstrap)",
+               y="noise · WRANSAC reading",
+               title=f"Which reading × noise gives the paper's ordering? ({coord})")
     return ax
 
 
@@ -274,6 +297,7 @@ def plot_budget(errors: np.ndarray, budgets: tuple[int, ...], methods: tuple[str
     ax.yaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
     ax.yaxis.set_minor_locator(NullLocator())
     ax.set_ylabel("worst |Dec error| over 72 min (″)")
+    ax.set_xlabel("method (share of runs within the bound)")
     ax.set_title(f"U = {budget} hypotheses, {errors.shape[0]} runs per method (fewer than "
                  "the main run: a side study)", y=1.01)
     return ax
@@ -282,14 +306,16 @@ def plot_budget(errors: np.ndarray, budgets: tuple[int, ...], methods: tuple[str
 def plot_threshold_sensitivity(df: pd.DataFrame, *, ax: plt.Axes | None = None) -> plt.Axes:
     """RMS 72-min error versus t/σ per loss."""
     ax = get_ax(ax)
-    for k, c in enumerate(df.columns):
-        weighted = "weighted" in c
-        ax.plot(df.index, df[c], "s--" if weighted else "o-", color="k" if weighted else f"C{k}",
-                label=c)
+    names = {"zero_one": "ransac", "msac": "msac", "msac_squared": "quadratic scoring",
+             "sinusoidal": "sinusoidal"}
+    keys = ["wransac" if "weighted" in c else names.get(c.split(" +")[0], c) for c in df.columns]
+    for c, st in zip(df.columns, _styles(keys), strict=True):
+        ax.plot(df.index, df[c], label=c, **st.line())
     ax.set_yscale("log")
-    ax.set(xlabel="threshold t / σ", ylabel="median RMS 72-min error (arcsec)",
-           title="Threshold sensitivity (beyond the paper)")
-    ax.legend(fontsize=8)
+    log_axis(ax, "y")
+    label_axes(ax, x="threshold $t/\\sigma$", y="median RMS 72-min Dec error", yunit="″",
+               title="Threshold sensitivity: scoring loss and refit apart")
+    legend_outside(ax, where="below", ncol=2)
     return ax
 
 
@@ -297,11 +323,11 @@ def plot_eclipse_season(sc: Scenario, *, ax: plt.Axes | None = None) -> plt.Axes
     """Length of each Earth-shadow pass of the object over the searched span."""
     ax = get_ax(ax)
     d = sc.extra["eclipse_durations_min"]
-    ax.bar(np.arange(len(d)), d, color="C0")
+    ax.bar(np.arange(len(d)), d, color="C0", label="shadow pass (ours)")
     ax.axhline(72, ls="--", c="k", lw=0.8, label="72 min (paper)")
-    ax.set(xlabel="shadow pass (chronological)", ylabel="shadow duration (min)",
-           title=f"Earth-shadow passes of NORAD {sc.extra['norad_id']}")
-    ax.legend()
+    label_axes(ax, x="shadow pass (chronological index)", y="shadow duration", yunit="min",
+               title=f"Earth-shadow passes of NORAD {sc.extra['norad_id']}")
+    legend_outside(ax, where="right")
     return ax
 
 
@@ -312,12 +338,14 @@ def plot_generalisation(table: pd.DataFrame, *, ax: plt.Axes | None = None,
     worst = table["worst"]
     x = np.arange(len(worst.index))
     k = len(worst.columns)
-    for i, m in enumerate(worst.columns):
-        ax.bar(x + (i - k / 2) * 0.8 / k, worst[m], width=0.8 / k,
-               label=METHOD_LABELS.get(m, m))
+    for i, (m, st) in enumerate(zip(worst.columns, _styles(list(worst.columns)), strict=True)):
+        ax.bar(x + (i - k / 2 + 0.5) * 0.8 / k, worst[m], width=0.8 / k,
+               label=METHOD_LABELS.get(m, m), **st.bar())
     ax.set_yscale("log")
-    ax.set_xticks(x, [str(k).split(" (")[0].split(",")[0] for k in worst.index], fontsize=8)
-    ax.axhline(27, ls="--", c="k", lw=0.8)
-    ax.set(ylabel="worst |error| in 72 min, RA or Dec (″)", title=title)
-    ax.legend(fontsize=7, ncol=3)
+    log_axis(ax, "y")
+    ax.set_xticks(x, [str(c).split(" (")[0].split(",")[0].replace("NORAD ", "")
+                      for c in worst.index])
+    ax.axhline(27, ls="--", c="k", lw=0.8, label="27″ (the paper's bound)")
+    label_axes(ax, x="object (NORAD id)", y="worst |error| in 72 min", yunit="″", title=title)
+    legend_outside(ax, where="right")
     return ax
