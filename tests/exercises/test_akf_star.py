@@ -40,7 +40,8 @@ def _reduction():
 RIGHT = {
     "akf_star.1": _qa,
     "akf_star.2": lambda: _d,
-    "akf_star.3": lambda: float(A.diurnal_check()["rel_error_paper"].median()),
+    "akf_star.3": lambda: float(A.diurnal_check(n_stars=60, min_alt_deg=30)["rel_error_paper"]
+                                .median()),
     "akf_star.4": _explore,
     "akf_star.5": _reduction,
     "akf_star.6": lambda: "d",
@@ -80,6 +81,27 @@ def test_wrong_answer_fails(ex):
     res = check(ex, WRONG[ex]())
     assert not res
     assert "hint" in res.message
+
+
+def _ex3_other_mapping(kind):
+    """Eq. (12)'s rates under another mapping of (u̇, v̇) onto (cos h·Ȧ, ḣ) — what a student
+    who guesses the convention computes."""
+    d = A.diurnal_check(n_stars=60, min_alt_deg=30)
+    obs = np.c_[d["astropy_cosh_Adot"], d["astropy_hdot"]]
+    p = np.c_[d["paper_cosh_Adot"], d["paper_hdot"]]
+    p = {"swapped": p[:, ::-1], "sign": -p, "swapped sign": -p[:, ::-1]}[kind]
+    return float(np.median(np.linalg.norm(p - obs, axis=1) / np.linalg.norm(obs, axis=1)))
+
+
+@pytest.mark.parametrize("wrong", [
+    lambda: float(A.diurnal_check()["rel_error_paper"].median()),   # the notebook's 30 stars
+    lambda: _ex3_other_mapping("swapped"),
+    lambda: _ex3_other_mapping("sign"),
+    lambda: _ex3_other_mapping("swapped sign"),
+    lambda: float(A.diurnal_check(n_stars=60, min_alt_deg=30)["rel_error_paper"].mean()),
+])
+def test_exercise3_rejects_other_star_sets_mappings_and_the_mean(wrong):
+    assert not check("akf_star.3", wrong())
 
 
 @pytest.mark.parametrize("ex", sorted(BAD))

@@ -161,8 +161,8 @@ def plot_diurnal_check(df: Any, ax: Any = None) -> Any:
     ax.plot(df["astropy_hdot"] * k, df["paper_hdot"] * k, "x", label="eq. (12) as printed")
     lim = float(np.abs(df["astropy_hdot"]).max() * k * 1.1)
     ax.plot([-lim, lim], [-lim, lim], "k:", lw=0.8)
-    ax.set_xlabel("astropy ḣ (arcsec/s)")
-    ax.set_ylabel("model ḣ (arcsec/s)")
+    ax.set_xlabel(r"astropy $\dot h$ (arcsec/s)")
+    ax.set_ylabel(r"model $\dot h$ (arcsec/s)")
     ax.set_title(f"Altitude rate of {len(df)} real stars")
     ax.legend()
     return ax.figure
@@ -229,16 +229,22 @@ def plot_confidence_trace(seq: Any, track: Any, axes: Any = None) -> Any:
     import matplotlib.pyplot as plt
 
     if axes is None:
-        _, axes = plt.subplots(2, 1, figsize=(7, 4.5), sharex=True)
-    n = len(seq.truth)
+        fig, axes = plt.subplots(2, 1, figsize=(7, 5.2), sharex=True)
+        fig.subplots_adjust(hspace=0.45)
     e = np.hypot(*(track.xs[:, :2] - seq.truth).T)
     axes[0].plot(seq.visible, label="cloud transmission at the star")
-    axes[0].plot(track.confidence, ".", ms=3, label="C_k")
-    axes[0].scatter(np.arange(n), np.full(n, -0.1), c=track.modes, cmap="viridis", marker="|",
-                    s=60)
+    axes[0].plot(track.confidence, ".", ms=3, label=r"$C_k$")
+    modes = np.asarray(track.modes)
+    for m, (name, col) in enumerate((("update", "tab:green"), (r"inflated $R$", "tab:orange"),
+                                     ("predict only", "tab:red"))):
+        sel = modes == m
+        axes[0].scatter(np.flatnonzero(sel), np.full(int(sel.sum()), -0.1), color=col,
+                        marker="|", s=60, label=f"mode: {name}")
     axes[0].set_ylim(-0.2, 1.05)
-    axes[0].legend(fontsize=8)
-    axes[0].set_title("BEAK-ST through clouds (mode strip: update / inflated R / predict)")
+    axes[0].set_ylabel("transmission, confidence")
+    axes[0].legend(fontsize=7, ncol=3, loc="upper center", bbox_to_anchor=(0.5, -0.12),
+                   frameon=False)
+    axes[0].set_title("BEAK-ST through clouds (strip at the bottom: the filter's mode)")
     axes[1].semilogy(e + 1e-3)
     axes[1].set_ylabel("error (px)")
     axes[1].set_xlabel("frame")

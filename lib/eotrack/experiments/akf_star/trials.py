@@ -321,10 +321,15 @@ def diurnal_check(n_stars: int = 30, duration_s: float = 180.0, min_alt_deg: flo
     -------
     pandas.DataFrame
         One row per star: the three rate pairs (rad/s), the relative errors of both forms, and
-        the total speed over ``ω_e cos δ``.
+        the total speed over ``ω_e cos δ`` with δ the declination OF DATE (true equator and
+        equinox, astropy TETE; the J2000 catalogue δ is off by precession, which matters
+        near the pole: Polaris's J2000 δ gives 0.85 instead of 1).
+    The rates of eq. (12) are compared as ``(u̇, v̇)/f ↔ (cos h·Ȧ, ḣ)``: the printed
+    ``−ω_e sin A cos h`` as the azimuthal rate and ``−ω_e cos A cos h`` as the altitude rate
+    (:func:`eotrack.geometry.shipboard.diurnal_rates_paper`).
     """
     import astropy.units as u
-    from astropy.coordinates import AltAz, EarthLocation, SkyCoord
+    from astropy.coordinates import TETE, AltAz, EarthLocation, SkyCoord
     from astropy.time import Time
 
     from eotrack import astro
@@ -346,6 +351,8 @@ def diurnal_check(n_stars: int = 30, duration_s: float = 180.0, min_alt_deg: flo
     good = np.c_[diurnal_rates(Az[up, 1], Alt[up, 1], np.radians(site.lat_deg))]
     paper = np.c_[diurnal_rates_paper(Az[up, 1], Alt[up, 1])]
     norm = np.linalg.norm(obs, axis=1)
+    dec_date = SkyCoord(cat.ra_deg[up] * u.deg, cat.dec_deg[up] * u.deg).transform_to(
+        TETE(obstime=times[1])).dec.deg
     return pd.DataFrame({
         "azimuth_deg": np.degrees(Az[up, 1]), "altitude_deg": np.degrees(Alt[up, 1]),
         "astropy_cosh_Adot": obs[:, 0], "astropy_hdot": obs[:, 1],
@@ -353,7 +360,8 @@ def diurnal_check(n_stars: int = 30, duration_s: float = 180.0, min_alt_deg: flo
         "paper_cosh_Adot": paper[:, 0], "paper_hdot": paper[:, 1],
         "rel_error_correct": np.linalg.norm(good - obs, axis=1) / norm,
         "rel_error_paper": np.linalg.norm(paper - obs, axis=1) / norm,
-        "speed_over_omega_cos_dec": norm / (OMEGA_EARTH * np.cos(np.radians(cat.dec_deg[up]))),
+        "dec_of_date_deg": dec_date,
+        "speed_over_omega_cos_dec": norm / (OMEGA_EARTH * np.cos(np.radians(dec_date))),
     })
 
 
