@@ -34,7 +34,8 @@ The lint
 :func:`lint_figure` draws a figure and returns its problems: overlapping text (from the
 rendered bounding boxes, rotated labels as rotated boxes), a legend covering data, an axis
 without a label, text under 8 pt at the book's width, a figure or panel without a title, two
-series with the same colour and style, log-axis labels like ``2×10⁰``. ``tests/figures/`` runs
+series with the same colour and style, colour-coded data without any key, log-axis labels
+like ``2×10⁰``. ``tests/figures/`` runs
 it on every public figure function of the library.
 """
 

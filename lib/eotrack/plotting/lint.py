@@ -28,7 +28,7 @@ __all__ = ["RULES", "FigureProblem", "effective_font_scale", "lint_figure"]
 
 #: The lint's rules, in the order they are checked.
 RULES = ("overlapping-text", "legend-covers-data", "axis-label", "small-text", "title",
-         "same-style", "log-labels")
+         "same-style", "unkeyed-colours", "log-labels")
 
 
 @dataclass(frozen=True)
@@ -245,6 +245,40 @@ def _check_same_style(fig: Figure) -> list[FigureProblem]:
     return out
 
 
+def _hue_key(rgba: Any) -> tuple | None:
+    r, g, b, a = to_rgba(rgba)
+    if a == 0 or max(r, g, b) - min(r, g, b) < 0.15:  # transparent, black, grey, white
+        return None
+    return (round(r, 1), round(g, 1), round(b, 1))
+
+
+def _check_unkeyed(fig: Figure, texts: list[Text]) -> list[FigureProblem]:
+    """Colour-coded data with no key: two or more colours, no legend, no colour bar, and no
+    text in those colours naming them (direct labels count as a key)."""
+    if fig.legends or any(_is_colorbar(a) for a in fig.axes):
+        return []
+    text_hues = {_hue_key(t.get_color()) for t in texts}
+    out = []
+    for i, ax in enumerate(_data_axes(fig)):
+        if ax.get_legend() is not None or not ax.axison:
+            continue
+        hues = set()
+        for ln in ax.get_lines():
+            if ln.get_visible() and len(np.atleast_1d(ln.get_xdata())) >= 1:
+                hues.add(_hue_key(ln.get_color()))
+        for col in ax.collections:
+            if col.get_visible() and len(col.get_facecolor()) and col.get_array() is None:
+                fc = col.get_facecolor()[0] if to_rgba(col.get_facecolor()[0])[3] > 0 else \
+                    (col.get_edgecolor()[0] if len(col.get_edgecolor()) else (0, 0, 0, 0))
+                hues.add(_hue_key(fc))
+        hues.discard(None)
+        unkeyed = hues - text_hues
+        if len(hues) >= 2 and unkeyed:
+            out.append(FigureProblem("unkeyed-colours", f"panel {i + 1}: {len(hues)} colours "
+                                     f"code the data but there is no legend or label for them"))
+    return out
+
+
 def _line_points(line: Line2D, ax: Any, step_px: float = 3.0, cap: int = 200_000) -> np.ndarray:
     xy = np.column_stack([np.asarray(line.get_xdata(orig=False), dtype=float),
                           np.asarray(line.get_ydata(orig=False), dtype=float)])
@@ -369,6 +403,7 @@ def lint_figure(fig: Any, *, rules: tuple[str, ...] = RULES) -> list[FigureProbl
         "small-text": lambda: _check_small(texts, scale),
         "title": lambda: _check_titles(fig),
         "same-style": lambda: _check_same_style(fig),
+        "unkeyed-colours": lambda: _check_unkeyed(fig, texts),
         "log-labels": lambda: _check_log_labels(fig),
     }
     for r in RULES:
