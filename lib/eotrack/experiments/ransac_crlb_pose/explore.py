@@ -110,7 +110,8 @@ def explore_figure(reading: str = "pooled", noise_unit_mm: float = 1.0,
         labels.append("ML (weighted)")
     x = np.arange(1, len(cols) + 1)
     a1.plot(x, np.column_stack(cols).T, color="0.5", lw=0.4, alpha=0.4)
-    a1.boxplot(cols, positions=x, widths=0.45, showmeans=True)
+    a1.boxplot(cols, positions=x, widths=0.45, showmeans=True, medianprops={"color": "k"},
+               meanprops={"marker": "D", "markerfacecolor": "w", "markeredgecolor": "k"})
     a1.set_xticks(x, labels)
     a1.set_yscale("log")
     a1.yaxis.set_minor_locator(NullLocator())   # fewer ticks: the inline PNG renders faster

@@ -77,7 +77,7 @@ def plot_error_distribution(df: pd.DataFrame, quantity: str = "att",
     ax.plot(x, Y.T, color="0.5", lw=0.3, alpha=0.25, zorder=1)
     ax.boxplot(data, positions=x, widths=0.45, showmeans=True, zorder=3,
                meanprops={"marker": "D", "markerfacecolor": "w", "markeredgecolor": "k"},
-               flierprops={"markersize": 2})
+               medianprops={"color": "k"}, flierprops={"markersize": 2})
     ax.set_xticks(x, [_label(m) for m in methods])
     log_axis(ax, "y")
     ylab, fig_no, word = _QTY[quantity]
@@ -160,8 +160,7 @@ def _frame(ax, origin, R, length, label, color):
     for k, c in enumerate(("r", "g", "b")):
         d = R[:, k] * length
         ax.quiver(*origin, *d, color=c, lw=1.5, arrow_length_ratio=0.15)
-        ax.text(*(origin + 1.1 * d), f"{label}{'xyz'[k]}", color=c, fontsize=7)
-    ax.text(*origin, f"  {label}", color=color, fontsize=8)
+        ax.text(*(origin + 1.15 * d), f"${label}_{'xyz'[k]}$", color=c, fontsize=9)
 
 
 def draw_scene_3d(scene: Any, ax=None, *, frustum_depth: float = 2.0):
@@ -193,8 +192,8 @@ def draw_scene_3d(scene: Any, ax=None, *, frustum_depth: float = 2.0):
         axis.set_major_locator(MaxNLocator(4))
     ax.set_box_aspect((1, 1, 2.5))
     ax.view_init(elev=20, azim=-60)
-    ax.legend(fontsize=7, loc="upper left")
-    ax.set_title("Camera frame c, target frame t, feature plane (§1, §3)", fontsize=9)
+    ax.legend(loc="upper left")
+    ax.set_title("Camera frame c, target frame t, feature plane (§1, §3)")
     return ax
 
 
@@ -223,13 +222,12 @@ def plot_crlb_ellipsoid(C: np.ndarray, samples: np.ndarray | None = None, *,
     if samples is not None:
         s = np.asarray(samples, float)[:, sl] * scale
         ax.scatter(*s.T, s=4, c="C0", alpha=0.6, label=f"ML estimates ({len(s)} draws)")
-        ax.legend(fontsize=7)
+        ax.legend(loc="upper left")
     unit = "m" if block == "pos" else "deg"
     names = ("δt_x", "δt_y", "δt_z") if block == "pos" else ("δθ_x", "δθ_y", "δθ_z")
     for setter, nm in zip((ax.set_xlabel, ax.set_ylabel, ax.set_zlabel), names):
         setter(f"{nm} ({unit})")
-    ax.set_title(f"{n_sigma:g}-σ CRLB ellipsoid, {'position' if block == 'pos' else 'attitude'}",
-                 fontsize=9)
+    ax.set_title(f"{n_sigma:g}-σ CRLB ellipsoid, {'position' if block == 'pos' else 'attitude'}")
     return ax
 
 
