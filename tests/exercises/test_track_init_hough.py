@@ -41,7 +41,7 @@ def _depleted_2():
 
 def _consecutive_only_2():
     # only the (k-2, k-1, k) triples (forgetting the two 3-of-4 shapes with a gap)
-    cfg, sc = _scene2()
+    _cfg, sc = _scene2()
     t = [tt for tt, _ in sc.frames]
     n = [len(xy) for _, xy in sc.frames]
     return sum(n[k - 2] * n[k - 1] * n[k] * TH.triplet_chance_probability(

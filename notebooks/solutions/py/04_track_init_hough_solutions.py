@@ -19,7 +19,7 @@ import numpy as np
 from eotrack.exercises import check
 from eotrack.experiments import track_init_hough as TH
 from eotrack.notebook import setup_notebook
-from eotrack.tracking.initiation import ModifiedHoughInitiator
+from eotrack.tracking.initiation import ModifiedHoughInitiator, pair_parameters
 from IPython.display import Markdown, display
 
 setup_notebook()
@@ -58,25 +58,34 @@ display(Markdown(
 # different hits. This is why the engine searches each triplet from a seed pair two frames
 # apart: the third hit is then interpolated or extrapolated by at most half the seed's span.
 #
-# ## Exercise 2 — the chance tracks of one clutter-only scene
+# ## Exercise 2 — the §4.6 sum in one clutter-only scene
 
 # %%
 scene = TH.planted_scene(np.random.default_rng(2016), pl_cfg, clutter_per_frame=30.0,
                          n_objects=0, n_stars=0)
-expected = TH.chi2_chance_tracks(scene, v_min=pl_cfg.v_gate_px_s[0], v_max=pl_cfg.v_gate_px_s[1],
-                                 sigma_px=pl_cfg.sigma_px, alpha=pl_cfg.alpha,
-                                 width=pl_cfg.width_px)
+t_f = [t for t, _ in scene.frames]
+n_f = [len(xy) for _, xy in scene.frames]
+expected = sum(n_f[a] * n_f[b] * n_f[c] * TH.triplet_chance_probability(
+    t_f[a], t_f[b], t_f[c], width=pl_cfg.width_px, v_min=pl_cfg.v_gate_px_s[0],
+    v_max=pl_cfg.v_gate_px_s[1], sigma_px=pl_cfg.sigma_px, alpha=pl_cfg.alpha)
+    for a, b, c in TH.triplet_shapes(len(t_f)))
 assert check("track_init_hough.2", expected)
+corrected = TH.chi2_chance_tracks(scene, v_min=pl_cfg.v_gate_px_s[0],
+                                  v_max=pl_cfg.v_gate_px_s[1], sigma_px=pl_cfg.sigma_px,
+                                  alpha=pl_cfg.alpha, width=pl_cfg.width_px)
 measured = len(ModifiedHoughInitiator(v_min=pl_cfg.v_gate_px_s[0], v_max=pl_cfg.v_gate_px_s[1],
                                       sigma_px=pl_cfg.sigma_px,
                                       alpha=pl_cfg.alpha).initiate(scene.frames))
-display(Markdown(f"Expected {expected:.2f} chance tracks; the verified initiator confirms "
-                 f"{measured} in this one scene (a Poisson-like count around the expectation)."))
+display(Markdown(f"The sum: {expected:.2f} passing triples; with the conflict and depletion "
+                 f"corrections {corrected:.2f} expected chance tracks; the verified initiator "
+                 f"confirms {measured} in this one scene (a Poisson-like count)."))
 
 # %% [markdown]
-# The count scales as $\lambda^3$: doubling the clutter multiplies chance tracks by about 8.
-# No initiator that applies the same 3-of-4 test can do better on average; only a stricter test
-# (smaller σ or α, a fourth frame) can.
+# The sum counts passing triples, an upper bound on tracks: triples sharing a detection are
+# confirmed once, and confirmed tracks use up detections. The count scales as $\lambda^3$:
+# doubling the clutter multiplies chance tracks by about 8. No initiator that applies the same
+# 3-of-4 test can do better on average; only a stricter test (smaller σ or α, a fourth frame)
+# can.
 #
 # ## Exercise 3 — the paper's procedure at 50 clutter points per frame
 
@@ -104,9 +113,10 @@ pts = {f: xs.frames[f][1][np.flatnonzero(xs.labels[f] == 1)[0]]
        for f in range(4) if np.any(xs.labels[f] == 1)}
 cells = []
 for fa, fb in [(0, 1), (1, 3)]:
-    r_, t_, v_, s_ = ini.cell_of(pts[fa], float(fa), pts[fb], float(fb))
-    cells.append((math.floor(r_ / ini.d_rho), math.floor(t_ / ini.d_theta_deg),
-                  math.floor(v_ / ini.d_v), s_))
+    r_, t_, v_, s_ = (float(x[0]) for x in pair_parameters(pts[fa][None, :], pts[fb][None, :],
+                                                           float(fb - fa)))
+    cells.append((math.floor(r_ / ini.d_rho), math.floor(math.degrees(t_) / ini.d_theta_deg),
+                  math.floor(v_ / ini.d_v), int(s_)))
 diff = np.abs(np.subtract(cells[0][:3], cells[1][:3]))
 assert diff.sum() >= 2 and diff.max() == 1
 assert check("track_init_hough.4", "a")

@@ -38,7 +38,7 @@ from .chance import (
     triplet_chance_probability,
     triplet_shapes,
 )
-from .claims import angle_summary, evaluate, evaluate_planted
+from .claims import angle_summary, calibrated_chance_factor, evaluate, evaluate_planted
 from .figures import (
     EXPLORE_CLUTTER,
     EXPLORE_SCENES,
@@ -58,6 +58,7 @@ from .scenario import (
     SLUG,
     XU_TARGETS,
     ComparisonConfig,
+    HeldOutConfig,
     PlantedConfig,
     PlantedTarget,
     Scene,
@@ -65,6 +66,7 @@ from .scenario import (
     comparison_initiators,
     comparison_scene,
     gnomonic_to_pixels,
+    heldout_scene,
     make_xu_scene,
     planted_initiators,
     planted_scene,
@@ -91,6 +93,7 @@ __all__ = [
     "TITLE",
     "XU_TARGETS",
     "ComparisonConfig",
+    "HeldOutConfig",
     "PlantedConfig",
     "PlantedTarget",
     "Scene",
@@ -98,6 +101,7 @@ __all__ = [
     "XuConfig",
     "angle_constraint_table",
     "angle_summary",
+    "calibrated_chance_factor",
     "chance_rate_check",
     "chi2_chance_tracks",
     "comparison_initiators",
@@ -107,6 +111,7 @@ __all__ = [
     "evaluate_planted",
     "explore_results",
     "gnomonic_to_pixels",
+    "heldout_scene",
     "logic_false_track_table",
     "make_xu_scene",
     "planted_initiators",

@@ -478,3 +478,81 @@ def planted_initiators(cfg: PlantedConfig | None = None, xu: XuConfig | None = N
                                                             sigma_px=cfg.sigma_px,
                                                             alpha=cfg.alpha),
     }
+
+
+# --------------------------------------------------------------------------- held-out scenes
+@dataclass(frozen=True)
+class HeldOutConfig:
+    """Held-out scenes the paper never had (issue 27): mildly accelerating objects, a clutter
+    burst in one frame, irregular frame intervals and a lower detection probability.
+
+    Attributes
+    ----------
+    n_frames, width_px
+        Frames per scene and image side.
+    dt_s
+        Frame intervals drawn uniformly in this range (s).
+    n_objects, speed_px_s
+        Objects per scene and their initial speeds (uniform).
+    accel_px_s2
+        Along- and cross-track accelerations, each uniform in ``±accel_px_s2``.
+    p_detect
+        Detection probability.
+    clutter_per_frame, burst
+        Uniform Poisson clutter per frame (per-scene mean uniform in the range) and the extra
+        false alarms of one random frame.
+    n_stars, star_residual, sigma_px
+        Residual stars, their per-frame probability and the centroid noise.
+    """
+
+    n_frames: int = 8
+    width_px: int = 512
+    dt_s: tuple[float, float] = (0.6, 1.6)
+    n_objects: tuple[int, int] = (3, 8)
+    speed_px_s: tuple[float, float] = (10.0, 120.0)
+    accel_px_s2: float = 3.0
+    p_detect: float = 0.8
+    clutter_per_frame: tuple[float, float] = (5.0, 30.0)
+    burst: int = 150
+    n_stars: tuple[int, int] = (10, 30)
+    star_residual: float = 0.3
+    sigma_px: float = 0.3
+
+
+def heldout_scene(rng: np.random.Generator, cfg: HeldOutConfig | None = None) -> Scene:
+    """One held-out scene (:class:`HeldOutConfig`); labels as in :func:`planted_scene`."""
+    check_generator(rng)
+    cfg = cfg or HeldOutConfig()
+    w = float(cfg.width_px)
+    n_obj = int(rng.integers(cfg.n_objects[0], cfg.n_objects[1] + 1))
+    n_st = int(rng.integers(cfg.n_stars[0], cfg.n_stars[1] + 1))
+    lam = float(rng.uniform(*cfg.clutter_per_frame))
+    t = np.concatenate([[0.0], np.cumsum(rng.uniform(*cfg.dt_s, cfg.n_frames - 1))])
+    speed = rng.uniform(*cfg.speed_px_s, n_obj)
+    ang = rng.uniform(0, 2 * np.pi, n_obj)
+    u = np.stack([np.cos(ang), np.sin(ang)], 1)
+    nrm = np.stack([-u[:, 1], u[:, 0]], 1)
+    acc = (rng.uniform(-cfg.accel_px_s2, cfg.accel_px_s2, (n_obj, 1)) * u
+           + rng.uniform(-cfg.accel_px_s2, cfg.accel_px_s2, (n_obj, 1)) * nrm)
+    start = rng.uniform(0, w, (n_obj, 2))
+    stars = rng.uniform(0, w, (n_st, 2))
+    burst_frame = int(rng.integers(0, cfg.n_frames))
+    frames, labels, truth = [], [], []
+    for k in range(cfg.n_frames):
+        pos = start + speed[:, None] * u * t[k] + 0.5 * acc * t[k] ** 2
+        inside = np.all((pos >= 0) & (pos < w), axis=1)
+        det = inside & (rng.random(n_obj) < cfg.p_detect)
+        left = rng.random(n_st) < cfg.star_residual
+        nc = int(rng.poisson(lam)) + (cfg.burst if k == burst_frame else 0)
+        xy = np.concatenate([pos[det], stars[left]])
+        xy = xy + rng.normal(0.0, cfg.sigma_px, xy.shape)
+        xy = np.concatenate([xy, rng.uniform(0, w, (nc, 2))])
+        lab = np.concatenate([np.flatnonzero(det), -2 - np.flatnonzero(left),
+                              np.full(nc, -1)]).astype(int)
+        perm = rng.permutation(len(xy))
+        frames.append((float(t[k]), xy[perm]))
+        labels.append(lab[perm])
+        truth.append(pos)
+    return Scene(frames, labels, n_obj, stars_px=stars, truth_xy=truth,
+                 meta={"clutter_per_frame": lam, "burst_frame": burst_frame,
+                       "speed_px_s": speed, "accel_px_s2": acc})

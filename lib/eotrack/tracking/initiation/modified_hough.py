@@ -119,6 +119,20 @@ class ModifiedHoughInitiator:
         Origin of ρ (the paper does not say; default the image corner ``(0, 0)``).
     max_cells
         Refuse parameter spaces larger than this (memory guard).
+    literal
+        ``True``: the paper's cell-counting procedure; ``False`` (default): the verified
+        initiator (χ² test at ``sigma_px``, best fit first).
+    sigma_px, alpha
+        Centroid noise per axis and false-rejection probability of the verified χ² tests.
+    accel_px_s2
+        Verified initiator only: largest along- and cross-track acceleration (px/s²) of an
+        object that must still be initiated. When > 0, every frame with a full window also
+        searches **four-hit** tracks of constant acceleration: a seed pair ``(k−3, k−1)``, the
+        hit of frame ``k`` in the χ² disc widened by the largest acceleration offset
+        ``a√2/2·|(t_k − t_{k−3})(t_k − t_{k−1})|``, and the hit of ``k−2`` within the χ²
+        (2 d.o.f.) disc of the quadratic through the other three. They compete with the
+        3-hit triplets in one best-first selection (more hits first), so a longer track is not
+        lost to a chance triplet. ``0`` turns the search off.
     """
 
     d_rho: float = 5.0
@@ -134,6 +148,7 @@ class ModifiedHoughInitiator:
     literal: bool = False
     sigma_px: float = 0.3
     alpha: float = 1e-3
+    accel_px_s2: float = 3.0
 
     def __post_init__(self) -> None:
         check_positive(self.d_rho, "d_rho")
@@ -151,6 +166,7 @@ class ModifiedHoughInitiator:
         a = check_positive(self.alpha, "alpha")
         if not a < 1:
             raise ValueError(f"alpha must lie in (0, 1), got {self.alpha}")
+        check_positive(self.accel_px_s2, "accel_px_s2", allow_zero=True)
         if not self.literal and self.m < 4:
             raise ValueError(f"the verified initiator (literal=False) needs m >= 4 (a triplet "
                              f"plus the window), got m={self.m}; use literal=True for m < 4")
@@ -671,6 +687,7 @@ class _VerifiedEngine:
         self.thr = np.array([np.inf, np.inf, np.inf]
                             + [float(chi2.ppf(1.0 - cfg.alpha, 2 * (n - 2)))
                                for n in range(3, cfg.m + 1)])
+        self._thr2 = float(chi2.ppf(1.0 - cfg.alpha, 2))
         sizes = [len(x) for x in xys]
         self.off = np.concatenate([[0], np.cumsum(sizes)]).astype(np.int64)
         self.avail_flat = np.ones(int(self.off[-1]), dtype=bool)
@@ -690,9 +707,10 @@ class _VerifiedEngine:
         """Occupancy image of frame ``f``'s available detections for radius ``r``."""
         return occupancy_image(self.xys[f][self.available[f]], r)
 
-    def _triplets(self, fa: int, fb: int, ft: int) -> np.ndarray:
+    def _triplets(self, fa: int, fb: int, ft: int, widen: float = 0.0) -> np.ndarray:
         """Triplets (seed in ``fa``, seed in ``fb``, third in ``ft``) passing the χ² disc test
-        and the (noise-widened) velocity gate; rows of global ids in frame order."""
+        (its radius plus ``widen`` pixels) and the (noise-widened) velocity gate; rows of
+        global ids in frame order."""
         cfg = self.cfg
         ia_all = np.flatnonzero(self.available[fa])
         ib_all = np.flatnonzero(self.available[fb])
@@ -702,7 +720,7 @@ class _VerifiedEngine:
         dt = tb - ta
         tau = (tt - tb) / dt
         cfac = 1.0 + (1.0 + tau) ** 2 + tau**2  # var(x_t − prediction) / σ²
-        r = self.sigma * math.sqrt(self.thr[3] * cfac)
+        r = self.sigma * math.sqrt(self.thr[3] * cfac) + widen
         occ, x0, y0, w, h = self._occupancy(ft, r)
         a = self.xys[fa][ia_all]
         b = self.xys[fb][ib_all]
@@ -746,8 +764,12 @@ class _VerifiedEngine:
             trip.append(self._triplets(k - 3, k - 1, k))
         rows = np.concatenate(trip) if trip else np.zeros((0, 3), dtype=np.int64)
         entry["triplets"] = len(rows)
-        if len(rows):
-            self._confirm(k, rows, lo, entry)
+        extra = self._accel_tracks(k) if (self.cfg.accel_px_s2 > 0 and self.m == 4
+                                          and k >= 3) else None
+        if extra is not None:
+            entry["accelerating"] = len(extra[0])
+        if len(rows) or (extra is not None and len(extra[0])):
+            self._confirm(k, rows, lo, entry, extra)
         if self.log_on:
             self.log.append(entry)
 
@@ -759,7 +781,49 @@ class _VerifiedEngine:
         tm, pm, v, rss = cv_fit_batch(tt, self.xy_flat[g, 0], self.xy_flat[g, 1], mask)
         return mask, tm, pm, v, rss
 
-    def _confirm(self, k: int, trip: np.ndarray, lo: int, entry: dict) -> None:
+    def _accel_tracks(self, k: int):
+        """Four-hit constant-acceleration tracks of the window ``k−3 … k`` (see
+        ``accel_px_s2``): rows of global ids in frame order, their
+        χ² (2 d.o.f.), and the constant-velocity mean position and velocity (track info)."""
+        cfg = self.cfg
+        t = self.times
+        out_rows, out_chi = [], []
+        for fr in ([k - 3, k - 2, k - 1, k],):  # one window: 4 of 4 (cost: one search)
+            f0, f1, f2, f3 = fr
+            if not np.any(self.available[f1]):
+                continue
+            widen = cfg.accel_px_s2 * math.sqrt(2.0) / 2.0 * abs((t[f3] - t[f0]) * (t[f3] - t[f2]))
+            trip = self._triplets(f0, f2, f3, widen=widen)
+            if len(trip) == 0:
+                continue
+            ts = t[[f0, f2, f3]]
+            tq = t[f1]
+            lag = np.array([np.prod([(tq - ts[j]) / (ts[i] - ts[j]) for j in range(3) if j != i])
+                            for i in range(3)])
+            pred = np.einsum("i,nij->nj", lag, self.xy_flat[trip])
+            var = 1.0 + float(lag @ lag)
+            r4 = self.sigma * math.sqrt(self._thr2 * var)
+            it_all = np.flatnonzero(self.available[f1])
+            qi, pi, d2 = PointGrid(self.xys[f1][it_all], r4).query(pred, r4)
+            if len(qi) == 0:
+                continue
+            rows = np.stack([trip[qi, 0], self.off[f1] + it_all[pi], trip[qi, 1],
+                             trip[qi, 2]], 1)
+            out_rows.append(rows)
+            out_chi.append(d2 / (self.sigma**2 * var))
+        if not out_rows:
+            z = np.zeros((0, 2))
+            return np.zeros((0, 4), dtype=np.int64), np.zeros(0), z, z
+        rows, chi = np.concatenate(out_rows), np.concatenate(out_chi)
+        tt = self.times[self.frame_of[rows]]
+        _, pm, v, _ = cv_fit_batch(tt, self.xy_flat[rows, 0], self.xy_flat[rows, 1],
+                                   np.ones(rows.shape, bool))
+        speed = np.hypot(v[:, 0], v[:, 1])
+        ok = (speed >= cfg.v_min) & (speed <= cfg.v_max)
+        return rows[ok], chi[ok], pm[ok], v[ok]
+
+    def _confirm(self, k: int, trip: np.ndarray, lo: int, entry: dict,
+                 extra: tuple[np.ndarray, np.ndarray] | None = None) -> None:
         cfg = self.cfg
         m = self.m
         first = k - m + 1
@@ -774,6 +838,17 @@ class _VerifiedEngine:
         ok = ((nh >= self.need) & (chi <= self.thr[nh]) & (speed >= cfg.v_min)
               & (speed <= cfg.v_max))
         rows, pm, v, chi, nh = rows[ok], pm[ok], v[ok], chi[ok], nh[ok]
+        if extra is not None and len(extra[0]):
+            # accelerating four-hit tracks join the same best-first selection (more hits
+            # first); a CV track already among the rows wins its ties by a smaller χ²
+            pm_a, v_a = extra[2], extra[3]
+            if rows.shape[1] != extra[0].shape[1]:
+                raise AssertionError("accelerating tracks need m = 4")  # pragma: no cover
+            rows = np.concatenate([rows, extra[0]])
+            pm = np.concatenate([pm, pm_a])
+            v = np.concatenate([v, v_a])
+            chi = np.concatenate([chi, extra[1] + 1e-9])
+            nh = np.concatenate([nh, np.full(len(extra[0]), 4)])
         entry["candidate tracks"] = len(rows)
         if len(rows) == 0:
             return
