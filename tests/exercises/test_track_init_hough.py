@@ -29,11 +29,12 @@ def _right_2():
     # upper bound)
     cfg, sc = _scene2()
     return TH.chi2_chance_tracks(sc, v_min=cfg.v_gate_px_s[0], v_max=cfg.v_gate_px_s[1],
-                                 sigma_px=cfg.sigma_px, alpha=cfg.alpha, depletion=False)
+                                 sigma_px=cfg.sigma_px, alpha=cfg.alpha, depletion=False,
+                                 conflicts=False)
 
 
 def _depleted_2():
-    # the mean-field depletion the exercise does not ask for (was the accepted answer)
+    # the conflict and depletion corrections the exercise does not ask for (the old answer)
     cfg, sc = _scene2()
     return TH.chi2_chance_tracks(sc, v_min=cfg.v_gate_px_s[0], v_max=cfg.v_gate_px_s[1],
                                  sigma_px=cfg.sigma_px, alpha=cfg.alpha)
