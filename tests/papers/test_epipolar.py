@@ -275,6 +275,7 @@ def test_table4_is_paired_over_draws(rep):
 def test_fig5_has_bootstrap_intervals(rep):
     b = rep.data["fig5_bootstrap"]
     assert b["n_boot"] >= 1000
+    assert b["confidence"] == pytest.approx(1 - 0.05 / 2)  # Bonferroni over two readings
     assert b["best_L_ci"][0] <= b["best_L"] <= b["best_L_ci"][1]
     assert b["acc_ci"][0] <= b["acc"] <= b["acc_ci"][1]
     assert len(rep.data["trials"]) >= 20

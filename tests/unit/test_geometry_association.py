@@ -233,3 +233,57 @@ def test_held_out_multiview_scene_recovers_truth(seed, n_cams):
         assert len(objs) == 1  # one object per row
         got.append((objs.pop(), tuple(maps)))
     assert sorted(got) == want
+
+
+def _three_view_scene(seed):
+    rng = np.random.default_rng(seed)
+    Kc = intrinsics_from_fov(5.0, 5.0, 1024, 1024)  # not the paper's sensor
+    target = rng.normal(size=3) * 100
+    X = target + rng.normal(size=(10, 3)) * 12
+    cams = []
+    for _ in range(4):
+        v = rng.normal(size=3)
+        c = target + 2000 * v / np.linalg.norm(v)
+        cams.append(PinholeCamera(Kc, look_at(target - c, up=rng.normal(size=3)), c,
+                                  (1024, 1024)))
+    pts = [cam.project(X) + rng.normal(size=(10, 2)) * 0.3 for cam in cams]
+    return cams, pts
+
+
+def test_held_out_three_view_check_on_random_scenes():
+    """Held out: 120 random four-camera scenes of another sensor (5°, 1024 px), 0.3 px
+    centroid noise. With the uncertainty-aware gate (sigma_px) the check keeps true pairs at
+    its nominal rate and rejects most false pairs; a fixed 5 px radius rejects true pairs
+    where the pair's lines of sight are nearly parallel (the transferred point is then
+    uncertain by tens of px) — the failure this gate exists for."""
+    ii, jj = np.nonzero(~np.eye(10, dtype=bool))
+    false = np.column_stack([ii, jj])
+    true = np.column_stack([np.arange(10), np.arange(10)])
+    kept_true, kept_true_fixed, kept_false, n_false_seen = 0, 0, 0, 0
+    for seed in range(120):
+        cams, pts = _three_view_scene(seed)
+        others = [(cams[k], pts[k]) for k in (2, 3)]
+        kept_true += int(three_view_check(pts[0], pts[1], true, cams[0], cams[1], others,
+                                          sigma_px=0.3, p=0.999).sum())
+        kept_true_fixed += int(three_view_check(pts[0], pts[1], true, cams[0], cams[1],
+                                                others, 5.0).sum())
+        k = three_view_check(pts[0], pts[1], false, cams[0], cams[1], others, sigma_px=0.3,
+                             p=0.999)
+        kept_false += int(k.sum())
+        n_false_seen += len(k)
+    n_true = 120 * 10
+    assert kept_true / n_true >= 0.99  # nominal 0.999² per pair
+    assert kept_true_fixed < kept_true  # the fixed radius loses true pairs
+    assert kept_false / n_false_seen < 0.2
+
+
+def test_three_view_check_gate_arguments():
+    cams, pts = _three_view_scene(0)
+    with pytest.raises(TypeError, match="exactly one of gate_px"):
+        three_view_check(pts[0], pts[1], [[0, 0]], cams[0], cams[1], [], 5.0, sigma_px=0.3)
+    with pytest.raises(TypeError, match="exactly one of gate_px"):
+        three_view_check(pts[0], pts[1], [[0, 0]], cams[0], cams[1], [])
+    with pytest.raises(ValueError, match="sigma_px"):
+        three_view_check(pts[0], pts[1], [[0, 0]], cams[0], cams[1], [], sigma_px=-1.0)
+    with pytest.raises(ValueError, match="p must be"):
+        three_view_check(pts[0], pts[1], [[0, 0]], cams[0], cams[1], [], sigma_px=1.0, p=2)

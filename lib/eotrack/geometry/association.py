@@ -232,13 +232,24 @@ def summary_table(n_points: Sequence[int], matches: Mapping[tuple[int, int], np.
 
 
 def three_view_check(pts_a, pts_b, pairs, cam_a: PinholeCamera, cam_b: PinholeCamera,
-                     others: Sequence[tuple[PinholeCamera, np.ndarray]], gate_px: float
-                     ) -> np.ndarray:
+                     others: Sequence[tuple[PinholeCamera, np.ndarray]], gate_px=None, *,
+                     sigma_px=None, p: float = DEFAULT_GATE_PROBABILITY) -> np.ndarray:
     """Keep a pair only if the views that should see its target do see something there.
 
     For each pair the two lines of sight are triangulated and the point projected into every
-    other camera; if it falls inside that image and no detection lies within ``gate_px``, the
+    other camera; if it falls inside that image and no detection lies within the gate, the
     pair is inconsistent (a false association such as the paper's Fig. 4(e)).
+
+    Two gates:
+
+    * ``gate_px`` — a fixed radius (px) around the transferred point.
+    * ``sigma_px`` — the centroid noise (px rms per axis) of every map: the transferred point
+      then carries the triangulation's uncertainty too, which grows without bound as the two
+      lines of sight become parallel (a short baseline seen from the third view's side). Its
+      2×2 covariance ``σ² (J Jᵀ + I)`` (``J``: the transferred pixel's sensitivity to the four
+      pair coordinates, by central differences) gates a detection at the χ²₂(p) Mahalanobis
+      bound. A fixed ``gate_px`` rejects true pairs of such geometries; use ``sigma_px`` on
+      scenes you have not tuned a radius for.
 
     Parameters
     ----------
@@ -251,29 +262,68 @@ def three_view_check(pts_a, pts_b, pairs, cam_a: PinholeCamera, cam_b: PinholeCa
     others
         ``(camera, points)`` of the other maps.
     gate_px
-        Transfer gate (px, > 0).
+        Fixed transfer gate (px, > 0); give this or ``sigma_px``.
+    sigma_px
+        Centroid noise (px rms per axis, > 0) for the uncertainty-aware gate.
+    p
+        Probability of the uncertainty-aware gate (default 0.99).
 
     Returns
     -------
     numpy.ndarray of bool
         ``(k,)`` — True where the pair is consistent.
+
+    Raises
+    ------
+    TypeError
+        If neither or both of ``gate_px`` and ``sigma_px`` are given.
     """
     pa = as_points(pts_a, "pts_a")
     pb = as_points(pts_b, "pts_b")
     pr = np.asarray(pairs, int).reshape(-1, 2)
-    gate = check_positive(gate_px, "gate_px")
+    if (gate_px is None) == (sigma_px is None):
+        raise TypeError("three_view_check needs exactly one of gate_px (px) and sigma_px "
+                        "(centroid noise, px)")
+    if gate_px is not None:
+        gate = check_positive(gate_px, "gate_px")
+    else:
+        sig = check_positive(sigma_px, "sigma_px")
+        if isinstance(p, bool) or not isinstance(p, int | float | np.floating) or not 0 < p < 1:
+            raise ValueError(f"p must be a probability in (0, 1), got {p!r}")
+        bound = float(chi2.ppf(float(p), 2))
     if len(pr) == 0:
         return np.zeros(0, bool)
-    X = triangulate_two_rays(cam_a.c, cam_a.rays(pa[pr[:, 0]]), cam_b.c,
-                             cam_b.rays(pb[pr[:, 1]]))
+    ua, ub = pa[pr[:, 0]], pb[pr[:, 1]]
+
+    def tri(qa: np.ndarray, qb: np.ndarray) -> np.ndarray:
+        return triangulate_two_rays(cam_a.c, cam_a.rays(qa), cam_b.c, cam_b.rays(qb))
+
+    X = tri(ua, ub)
+    if sigma_px is not None:
+        h = 1e-2 * sig  # central differences, well inside the linear regime
+        shifted = []
+        for which in (0, 1):
+            for ax in (0, 1):
+                step = np.zeros(2)
+                step[ax] = h
+                qa, qb = (ua + step, ub) if which == 0 else (ua, ub + step)
+                qa2, qb2 = (ua - step, ub) if which == 0 else (ua, ub - step)
+                shifted.append((tri(qa, qb), tri(qa2, qb2)))
     keep = np.ones(len(pr), bool)
     for cam, pts in others:
         q = as_points(pts, "others points")
         inside = cam.sees(X)
         uv = cam.project(X)
-        if len(q):
+        if not len(q):
+            near = np.zeros(len(pr), bool)
+        elif sigma_px is None:
             near = np.min(np.linalg.norm(uv[:, None, :] - q[None], axis=2), axis=1) <= gate
         else:
-            near = np.zeros(len(pr), bool)
+            J = np.stack([(cam.project(xp) - cam.project(xm)) / (2 * h)
+                          for xp, xm in shifted], axis=2)  # (k, 2, 4)
+            cov = sig**2 * (J @ J.transpose(0, 2, 1) + np.eye(2))
+            r = q[None, :, :] - uv[:, None, :]  # (k, n, 2)
+            m2 = np.einsum("kni,kij,knj->kn", r, np.linalg.inv(cov), r)
+            near = m2.min(axis=1) <= bound
         keep &= ~inside | near
     return keep
