@@ -61,7 +61,7 @@ def _wls(a, y, w):
 RIGHT = {
     "wransac.1": lambda: (5 + 3) * (5 - 2) / (5 * (5 + 1)),
     "wransac.2": lambda: _gm(60, 45),
-    "wransac.3": lambda: _within(5, "cauchy_ransac", 15.0),
+    "wransac.3": lambda: _within(10, "wransac_hypothesis", 20.0),
     "wransac.4": lambda: float(f_dist.cdf(1 / _ratio(), 19, 19)),
     "wransac.5": lambda: _wls,
 }
@@ -75,9 +75,11 @@ WRONG = [
     ("wransac.2", lambda: _gm(80, 72)),  # the all-inlier 72-min value printed in section 4.7
     ("wransac.2", lambda: _gm(60, 45) ** 2),  # a variance, not a standard deviation
     ("wransac.2", lambda: _gm(60, 45, from_last_inlier=True)),  # 45 min after the 60th point
-    ("wransac.3", lambda: _within(5, "cauchy_ransac", 27.0)),  # the 27″ bound of the table
-    ("wransac.3", lambda: _within(3, "cauchy_ransac", 15.0)),  # U = 3
-    ("wransac.3", lambda: _within(5, "ransac", 15.0)),  # RANSAC, not the Cauchy polish
+    ("wransac.3", lambda: _within(10, "wransac_hypothesis", 27.0)),  # the table's 27″ bound
+    ("wransac.3", lambda: _within(3, "wransac_hypothesis", 20.0)),  # U = 3, the paper's
+    ("wransac.3", lambda: _within(30, "wransac_hypothesis", 20.0)),  # the next budget
+    ("wransac.3", lambda: _within(10, "ransac", 20.0)),  # RANSAC, not WRANSAC
+    ("wransac.3", lambda: 100 * _within(10, "wransac_hypothesis", 20.0)),  # a percentage
     ("wransac.4", lambda: 0.5),  # "a coin toss"
     ("wransac.4", lambda: float(f_dist.cdf(_ratio(), 19, 19))),  # P(ratio estimate < r)
     ("wransac.4", lambda: float(f_dist.cdf(1 / _ratio(), 20, 20))),  # 20 dof, not 19
@@ -90,7 +92,7 @@ BAD = {
     "wransac.1": ("0.8", TypeError),
     "wransac.2": (float("nan"), ValueError),
     "wransac.3": ([0.5], TypeError),
-    "wransac.4": ("e", ValueError),
+    "wransac.4": ("0.1", TypeError),
     "wransac.5": (3.0, TypeError),
 }
 

@@ -47,11 +47,11 @@ def _budget_errors():
                           runner=TrialRunner(progress=False))
 
 
-def _cauchy_u5_within_15():
+def _wransac_u10_within_20():
     from eotrack.experiments import wransac as W
 
     return float(W.budget_table(_budget_errors(), W.BUDGETS, W.BUDGET_METHODS,
-                                bound_arcsec=15.0).loc[5, "cauchy_ransac"])
+                                bound_arcsec=20.0).loc[10, "wransac_hypothesis"])
 
 
 @lru_cache(maxsize=1)
@@ -95,13 +95,13 @@ register("wransac.2", NumericAnswer(
 
 register("wransac.3", NumericAnswer(
     "Exploration. From the Explore sweep `budget_err` (errors, runs × budgets × methods × "
-    "times), compute the fraction (0–1) of runs in which the Cauchy M-estimator started from "
-    "RANSAC ('cauchy_ransac'), with U = 5 hypotheses, keeps its whole 72-min Dec prediction "
-    "within 15″.",
-    expected=_cauchy_u5_within_15, atol=0.005,
-    hint="index the budget axis with W.BUDGETS.index(5) and the method axis with "
-         "W.BUDGET_METHODS.index('cauchy_ransac'); take each run's largest |error| over the "
-         "times; or use W.budget_table(..., bound_arcsec=15)."))
+    "times), compute the fraction (0–1) of runs in which WRANSAC with the hypothesis weights "
+    "('wransac_hypothesis'), with U = 10 hypotheses, keeps its whole 72-min Dec prediction "
+    "within 20″.",
+    expected=_wransac_u10_within_20, atol=0.005,
+    hint="index the budget axis with W.BUDGETS.index(10) and the method axis with "
+         "W.BUDGET_METHODS.index('wransac_hypothesis'); take each run's largest |error| over "
+         "the times; or use W.budget_table(..., bound_arcsec=20)."))
 
 register("wransac.4", NumericAnswer(
     "Critique. The paper ordered WRANSAC and RANSAC from 20 runs, each method on its own draws. "
