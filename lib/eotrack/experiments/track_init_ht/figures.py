@@ -48,7 +48,7 @@ def plot_schematic(*, p_f: float = 0.2, window: int = 5, target_pixels: int = 4,
     the prediction holds a point (hit) or not (miss).
     """
     rng = np.random.default_rng(seed)
-    fig = fig or plt.figure(figsize=(10, 3.8))
+    fig = fig or plt.figure(figsize=(7.5, 3.3))
     a1, a2 = fig.subplots(1, 2, gridspec_kw={"width_ratios": [1, 2.2]})
     n = window
     fa = rng.random((n, n)) < p_f
@@ -81,13 +81,13 @@ def plot_schematic(*, p_f: float = 0.2, window: int = 5, target_pixels: int = 4,
         a2.add_patch(Rectangle((x[f] - gate / 2, -gate / 2), gate, gate, fc="0.88", ec="0.5"))
         if hits[f]:
             a2.plot(x[f] + rng.uniform(-0.3, 0.3), rng.uniform(-0.3, 0.3), "ko", ms=6)
-        a2.text(x[f], -gate / 2 - 0.5, f"k={f + 1}", ha="center", fontsize=8)
+        a2.text(x[f], -gate / 2 - 0.5, f"k={f + 1}", ha="center", fontsize=9)
     nh = int(hits.sum())
     a2.set_xlim(-gate, x[-1] + gate)
     a2.set_ylim(-gate, gate)
     a2.set_aspect("equal")
     a2.axis("off")
-    a2.set_title(f"gate {gate}×{gate} (M = {gate * gate}) over T = {frames} frames: "
+    a2.set_title(f"gate {gate}×{gate} (M = {gate * gate}) over T = {frames} frames:\n"
                  f"{nh} hits — a target track if ≥ $T_h$", fontsize=9)
     fig.tight_layout()
     return fig
@@ -95,7 +95,7 @@ def plot_schematic(*, p_f: float = 0.2, window: int = 5, target_pixels: int = 4,
 
 def plot_fig1(res: Fig1Result, *, s_max: int = 12, ax: plt.Axes | None = None) -> plt.Axes:
     """Fig. 1: P_FA and P_DA versus S (lines: formulas; markers: Monte Carlo)."""
-    ax = get_ax(ax, figsize=(9.0, 4.6))
+    ax = get_ax(ax, figsize=(5.0, 4.2))
     sel = res.s <= s_max
     s = res.s[sel]
     ax.semilogy(s, res.pfa[sel], "k-", lw=2, label="$P_{FA}$ eq. (4)")
@@ -116,7 +116,7 @@ def plot_fig1(res: Fig1Result, *, s_max: int = 12, ax: plt.Axes | None = None) -
     w = res.settings
     ax.set_title(f"Fig. 1 — $W_S$ = {w['window'] ** 2}, $T_S$ = {w['target_pixels']}, "
                  f"$P_F$ = {w['p_f']:g}")
-    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))  # off the curves
+    ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0))  # off the curves
     ax.figure.tight_layout()
     return ax
 
@@ -124,7 +124,7 @@ def plot_fig1(res: Fig1Result, *, s_max: int = 12, ax: plt.Axes | None = None) -
 def plot_fig2(res: Fig2Result, *, t_h: tuple[int, ...] = (3, 4, 5, 6),
               ax: plt.Axes | None = None) -> plt.Axes:
     """Fig. 2: P_DS (solid) and P_DT (dashed) versus P_F for several T_h; markers Monte Carlo."""
-    ax = get_ax(ax, figsize=(7.0, 4.4))
+    ax = get_ax(ax, figsize=(5.0, 4.2))
     colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
     for c, th in zip(colors, t_h):
         i = int(th) - 1
@@ -138,7 +138,8 @@ def plot_fig2(res: Fig2Result, *, t_h: tuple[int, ...] = (3, 4, 5, 6),
     ax.set_ylabel("probability")
     ax.set_title(f"Fig. 2 — SNR {st['snr']:g}, M = {st['gate']}×{st['gate']}, "
                  f"T = {st['frames']}")
-    ax.legend(fontsize=7, ncol=2)
+    ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0))  # off the curves
+    ax.figure.tight_layout()
     return ax
 
 
@@ -154,7 +155,7 @@ def plot_initiator_vs_formulas(df: pd.DataFrame, *, ax: plt.Axes | None = None) 
     ax.set_xlabel("single-frame $P_F$")
     ax.set_ylabel("probability")
     ax.set_title("The temporal-test initiator against eqs. (12)-(13)")
-    ax.legend(fontsize=7)
+    ax.legend(fontsize=8)
     return ax
 
 def _truth_circles(ax: plt.Axes, truth: np.ndarray, frame: int) -> None:
@@ -207,7 +208,8 @@ def plot_fig5(run: dict[str, Any], frame: int, *, window: int, s: int,
     ax.plot([], [], "o", ms=9, mfc="none", mec="w", label="true target")
     ax.set_title(f"Fig. 5 — clustered, $W_S$ = {window}×{window}, S = {s}: "
                  f"{int(c.sum())} pixels left", fontsize=9)
-    ax.legend(fontsize=7, loc="lower right", facecolor="0.3", labelcolor="w", frameon=True)
+    ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.01), ncol=2,
+              facecolor="0.3", labelcolor="w", frameon=True)  # below the image
     _image_axes(ax)
     return ax
 
@@ -241,7 +243,8 @@ def plot_fig6(run: dict[str, Any], *, gate: int, frames: int, min_hits: int,
     return ax
 
 
-def _track_legend(ax: plt.Axes, run: dict[str, Any], *, truth: bool = False) -> None:
+def _track_legend(ax: plt.Axes, run: dict[str, Any], *, truth: bool = False,
+                  below: float = -0.12) -> None:
     """Legend of the track colours (one per target, red false) and the grey true paths."""
     n_t = run["seq"].truth_xy.shape[0]
     names = ["main target", "curved target"] if n_t == 2 else [f"target {i}" for i in range(n_t)]
@@ -250,7 +253,7 @@ def _track_legend(ax: plt.Axes, run: dict[str, Any], *, truth: bool = False) -> 
     ax.plot([], [], ".-", color="r", label="false track")
     if truth:
         ax.plot([], [], ":", color="0.5", lw=1.5, label="true path (grey)")
-    ax.legend(fontsize=7, loc="lower left")
+    ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, below), ncol=2)  # below
 
 
 def plot_fig7(runs: dict[float, dict[str, Any]], sweep: pd.DataFrame | None = None, *,
@@ -262,7 +265,7 @@ def plot_fig7(runs: dict[float, dict[str, Any]], sweep: pd.DataFrame | None = No
     adds that SNR's recovery share over all runs to the title. The SNR ``paper_snr`` is the
     paper's; any other is labelled exploratory.
     """
-    fig = fig or plt.figure(figsize=(5.4 * len(runs), 5.8))
+    fig = fig or plt.figure(figsize=(min(7.5, 3.9 * len(runs)), 5.4))
     axs = np.atleast_1d(fig.subplots(1, len(runs)))
     for ax, (snr, run) in zip(axs, runs.items()):
         truth = run["seq"].truth_xy
@@ -277,18 +280,17 @@ def plot_fig7(runs: dict[float, dict[str, Any]], sweep: pd.DataFrame | None = No
         ax.set_xlabel("x (px)")
         ax.set_ylabel("y (px)")
         tag = "paper's SNR" if float(snr) == float(paper_snr) else "exploratory"
-        line2 = (f"this sequence (run 0): main {cov[0]:.0%}, curved {cov[-1]:.0%} of frames "
-                 "tracked")
+        line2 = f"run 0: main {cov[0]:.0%}, curved {cov[-1]:.0%} of frames tracked"
         line3 = ""
         if sweep is not None:
             row = sweep.loc[np.isclose(sweep["SNR"], float(snr))]
             if len(row):
                 r = row.iloc[0]
                 line3 = (f"\nall {int(r['runs'])} runs: curved target recovered in "
-                         f"{int(r['recovered runs'])} (95 % CP [{r['CP low']:.0%}, "
+                         f"{int(r['recovered runs'])}\n(95 % CP [{r['CP low']:.0%}, "
                          f"{r['CP high']:.0%}])")
-        ax.set_title(f"Fig. 7 — curved target SNR {snr:g} ({tag})\n{line2}{line3}", fontsize=9)
-        _track_legend(ax, run, truth=True)
+        ax.set_title(f"Fig. 7 — SNR {snr:g} ({tag})\n{line2}{line3}", fontsize=8)
+        _track_legend(ax, run, truth=True, below=-0.16)
     fig.tight_layout()
     return fig
 
@@ -310,13 +312,13 @@ def plot_measured_vs_formula(exp: dict[str, Any], *, ax: plt.Axes | None = None)
     ax.set_xlabel("S (clustering) or $T_h$ (temporal)")
     ax.set_ylabel("probability")
     ax.set_title("Sequences: measured false-alarm rates vs formulas")
-    ax.legend(fontsize=7)
+    ax.legend(fontsize=8)
     return ax
 
 
 def plot_snr_sweep(df: pd.DataFrame, *, ax: plt.Axes | None = None) -> plt.Axes:
     """Recovery of the curved target versus SNR."""
-    ax = get_ax(ax, figsize=(5.5, 3.6))
+    ax = get_ax(ax, figsize=(4.4, 3.4))
     y = df["recovered share"].to_numpy()
     err = np.vstack([y - df["CP low"].to_numpy(), df["CP high"].to_numpy() - y])
     ax.errorbar(df["SNR"], y, yerr=err, fmt="o-", capsize=3,
@@ -327,7 +329,8 @@ def plot_snr_sweep(df: pd.DataFrame, *, ax: plt.Axes | None = None) -> plt.Axes:
     ax.set_ylabel("fraction")
     ax.set_ylim(-0.03, 1.03)
     ax.set_title("Fig. 7 target: recovery versus SNR (same scene, same noise)")
-    ax.legend(fontsize=7, loc="upper left")
+    ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0))  # off the data
+    ax.figure.tight_layout()
     return ax
 
 
@@ -339,7 +342,7 @@ def _explore_artists() -> dict[str, Any]:
     """Build the Explore figure once: two log axes, their lines and markers (no pyplot state)."""
     if _EXPLORE:
         return _EXPLORE
-    fig = Figure(figsize=(10, 3.6), dpi=90)  # ~30 % fewer pixels to render per redraw
+    fig = Figure(figsize=(7.5, 3.4), dpi=90)  # the book's width; fewer pixels per redraw
     a1, a2 = fig.subplots(1, 2)
     x = np.arange(1, 3)
     # plain text only (no mathtext): a redraw must not re-parse TeX-like labels
@@ -360,7 +363,7 @@ def _explore_artists() -> dict[str, Any]:
         a.yaxis.set_major_formatter(LogFormatter())
         a.yaxis.set_minor_locator(NullLocator())
     a1.set(xlabel="clustering threshold S", ylabel="probability")
-    a2.set(xlabel="hits needed T_h")
+    a2.set(xlabel="hits needed T_h", ylabel="probability")
     a2.legend(fontsize=8, loc="lower left")
     a1.set_title("placeholder\nplaceholder", fontsize=9)
     a2.set_title("placeholder\nplaceholder", fontsize=9)
@@ -401,7 +404,7 @@ def explore_figure(snr: float = 2.0, log10_p_f: float = -2.5, window: int = 5,
     art["s"].set_xdata([s, s])
     a1.set_xlim(0.5, n + 0.5)
     handles = [art["pfa"], art["exact"]] + ([art["eq7"]] if show_eq7 else [])
-    a1.legend(handles=handles, fontsize=8, loc="lower left")
+    a1.legend(handles=handles, fontsize=8, loc="center right")
     # plain-text titles: mathtext with changing numbers would be re-parsed on every redraw
     a1.set_title(f"SNR {snr:g} → P_D = {p_d:.3f}, window {window}×{window}, T_S = "
                  f"{target_pixels}\nat S = {s}: P_FA = {pfa[s - 1]:.1e}, exact "
