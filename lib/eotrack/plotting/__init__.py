@@ -44,6 +44,7 @@ from __future__ import annotations
 from typing import Any
 
 from .helpers import (
+    describe_figure,
     get_ax,
     label_axes,
     legend_outside,
@@ -51,6 +52,7 @@ from .helpers import (
     paper_marker,
     paper_values,
     plain_number,
+    register_figure_descriptions,
     savefig,
 )
 from .lint import FigureProblem, effective_font_scale, lint_figure
@@ -83,6 +85,7 @@ __all__ = [
     "STYLE",
     "FigureProblem",
     "MethodStyle",
+    "describe_figure",
     "effective_font_scale",
     "get_ax",
     "house_style",
@@ -95,6 +98,7 @@ __all__ = [
     "paper_marker",
     "paper_values",
     "plain_number",
+    "register_figure_descriptions",
     "savefig",
     "series_styles",
     "style",
@@ -106,5 +110,8 @@ STYLE: dict[str, Any] = HOUSE_RC
 
 
 def style() -> None:
-    """Apply the house style globally (the name used before :func:`use_house_style`)."""
+    """Apply the house style globally (the name used before :func:`use_house_style`); in a
+    notebook kernel also :func:`register_figure_descriptions` (alt text for the book).
+    :func:`eotrack.notebook.setup_notebook` calls it."""
     use_house_style()
+    register_figure_descriptions()

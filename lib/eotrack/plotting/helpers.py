@@ -12,8 +12,18 @@ from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
 
 from .style import method_style
 
-__all__ = ["get_ax", "label_axes", "legend_outside", "log_axis", "paper_marker", "paper_values",
-           "plain_number", "savefig"]
+__all__ = [
+    "describe_figure",
+    "get_ax",
+    "label_axes",
+    "legend_outside",
+    "log_axis",
+    "paper_marker",
+    "paper_values",
+    "plain_number",
+    "register_figure_descriptions",
+    "savefig",
+]
 
 
 def get_ax(ax: plt.Axes | None = None, **fig_kw: Any) -> plt.Axes:
@@ -257,3 +267,45 @@ def savefig(fig: plt.Figure, path: str | Path, *, dpi: int = 110) -> Path:
     p.parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(p, dpi=dpi, bbox_inches="tight")
     return p
+
+
+def describe_figure(fig: Any) -> str:
+    """A one-line description of a figure from its titles, for alt text:
+    ``"Figure: <suptitle> — <panel title>; <panel title>"`` (``"Figure"`` if untitled).
+
+    Raises
+    ------
+    TypeError
+        If ``fig`` is not a matplotlib Figure.
+    """
+    from matplotlib.figure import Figure
+
+    if not isinstance(fig, Figure):
+        raise TypeError(f"fig must be a matplotlib Figure, got {type(fig).__name__}")
+    sup = fig._suptitle.get_text().strip() if fig._suptitle is not None else ""
+    panels = []
+    for ax in fig.axes:
+        t = " ".join(ax.get_title(loc=k) for k in ("left", "center", "right")).strip()
+        if t and t not in panels:
+            panels.append(t)
+    text = " — ".join(p for p in (sup, "; ".join(panels)) if p).replace("\n", " ")
+    return f"Figure: {text}" if text else "Figure"
+
+
+def register_figure_descriptions() -> bool:
+    """In an IPython kernel, make a figure's plain-text output its :func:`describe_figure`
+    (instead of ``<Figure size 640x480 with 1 Axes>``), so a stored notebook carries each
+    figure's titles and the book uses them as the image's alt text. Returns whether a kernel
+    was found (outside IPython nothing happens)."""
+    try:
+        from IPython import get_ipython
+    except ImportError:
+        return False
+    ip = get_ipython()
+    if ip is None:
+        return False
+    from matplotlib.figure import Figure
+
+    ip.display_formatter.formatters["text/plain"].for_type(
+        Figure, lambda fig, p, cycle: p.text(describe_figure(fig)))
+    return True
