@@ -10,6 +10,8 @@
    processes on a shared machine) and, beside it, the median wall time.
 3. The planted-scene Monte Carlo of claim ``track_init.planted_scenes``: recall and false
    tracks per scene of every initiator against the analytic chance rate of the χ² 3-of-4 rule.
+4. Held-out scenes (accelerating objects, a clutter burst, irregular intervals, P_D 0.8):
+   recall and false tracks of the default initiator against logic 3/4.
 
 Run: ``.venv/bin/python benchmarks/bench_track_init_hough.py`` (``--quick`` for fewer repeats
 and scenes, ``--profile`` to print a cProfile of the verified initiator at 200 candidates).
@@ -151,6 +153,33 @@ def bench_planted(n_scenes: int, n_chance: int) -> None:
           f"— {time.perf_counter() - t0:.0f} s")
 
 
+def bench_heldout(n_scenes: int, seed: int = 11) -> None:
+    """Held-out scenes (issue 27): mild accelerations, a 150-false-alarm burst in one frame,
+    irregular intervals, P_D 0.8. Targets: recall ≥ 0.90 and false tracks ≤ logic 3/4's."""
+    cfg = TH.HeldOutConfig()
+    inits = {"modified Hough (ours, default)": ModifiedHoughInitiator(v_min=3, v_max=240),
+             "modified Hough (ours, accel_px_s2=0)": ModifiedHoughInitiator(
+                 v_min=3, v_max=240, accel_px_s2=0.0),
+             "logic 3/4": LogicInitiator(n=3, m=4, v_min=3, v_max=240, gate_px=10.0)}
+    rng = np.random.default_rng(seed)
+    tot = {k: [0, 0, 0] for k in inits}
+    for _ in range(n_scenes):
+        scene = TH.heldout_scene(rng, cfg)
+        for name, ini in inits.items():
+            r = TH.score_tracks(ini.initiate(scene.frames), scene)
+            tot[name][0] += r["correct"]
+            tot[name][1] += r["eligible"]
+            tot[name][2] += r["false"]
+    print(f"\n4) held-out scenes ({n_scenes}: {cfg.n_frames} frames at {cfg.dt_s} s intervals, "
+          f"accelerations ±{cfg.accel_px_s2:g} px/s² along and across, P_D {cfg.p_detect}, "
+          f"a burst of {cfg.burst} false alarms in one frame)")
+    for name, (c, e, f) in tot.items():
+        print(f"   {name:38s} recall {c / max(e, 1):.3f}  false/scene {f / n_scenes:.2f}")
+    d, lg = tot["modified Hough (ours, default)"], tot["logic 3/4"]
+    print(f"   targets: recall ≥ 0.90: {d[0] / max(d[1], 1) >= 0.9}; false ≤ logic 3/4: "
+          f"{d[2] <= lg[2]}")
+
+
 def profile_verified(n_c: int = 200) -> None:
     rng = np.random.default_rng(1)
     frames = [(float(k), rng.uniform(0, 512, (n_c, 2))) for k in range(6)]
@@ -175,6 +204,7 @@ if __name__ == "__main__":
     bench_accumulator(repeat=20 if args.quick else 60)
     bench_per_frame(repeat=3 if args.quick else 7)
     bench_planted(20 if args.quick else 100, 10 if args.quick else 100)
+    bench_heldout(15 if args.quick else 60)
     if args.profile:
         profile_verified()
     print(f"\nload average at end: {os.getloadavg()[0]:.1f}; total "
