@@ -58,7 +58,7 @@ RIGHT = {
     "track_init_hough.1": _right_1,
     "track_init_hough.2": _right_2,
     "track_init_hough.3": _right_3,
-    "track_init_hough.4": lambda: "a",
+    "track_init_hough.4": lambda: 1.0,
     "track_init_hough.5": lambda: "b",
 }
 
@@ -66,7 +66,7 @@ WRONG = {
     "track_init_hough.1": lambda t1, t2, t3, which: 1.5,  # the evenly spaced middle only
     "track_init_hough.2": lambda: 2 * _right_2(),
     "track_init_hough.3": lambda: _right_3() + 3.0,
-    "track_init_hough.4": lambda: "c",
+    "track_init_hough.4": lambda: 2.0,  # track 2's count, not track 5's
     "track_init_hough.5": lambda: "a",
 }
 
@@ -98,9 +98,14 @@ def test_wrong_answer_fails(ex):
     ("track_init_hough.1", 3.0, TypeError),
     ("track_init_hough.2", "many", TypeError),
     ("track_init_hough.3", [1.0, 2.0], TypeError),
-    ("track_init_hough.4", "e", ValueError),
+    ("track_init_hough.4", "a", TypeError),
     ("track_init_hough.5", "z", ValueError),
 ])
 def test_bad_answer_raises(ex, bad, exc):
     with pytest.raises(exc):
         check(ex, bad)
+
+
+@pytest.mark.parametrize("wrong", [0.0, 2.0, 3.0])
+def test_exercise4_rejects_other_counts(wrong):
+    assert not check("track_init_hough.4", wrong)

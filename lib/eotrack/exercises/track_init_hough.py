@@ -9,7 +9,8 @@ Expected values are computed with the library on first use; nothing is typed in.
    available) in a seeded clutter-only scene;
 3. exploration — the paper's procedure in the Explore panel: false tracks per scene at 50
    clutter points per frame (6-neighbourhood, ρ from the image corner);
-4. critique — why the paper's 6-neighbourhood loses track 2 of the nominal scene;
+4. critique — in how many cell indices track 5's two pairs differ (why the 6-neighbourhood
+   keeps it while it loses track 2);
 5. critique — the angle constraint at the comparison's 10 px gate.
 """
 
@@ -49,6 +50,27 @@ def _ex2_expected() -> float:
         for a, b, c in TH.triplet_shapes(len(t))))
 
 
+def _ex4_expected() -> float:
+    """Indices (ρ, θ, v) in which the cells of track 5's consecutive pairs differ."""
+    import math
+
+    from eotrack.experiments import track_init_hough as TH
+    from eotrack.tracking.initiation import pair_parameters
+
+    cfg = TH.xu_config()
+    xs = TH.make_xu_scene(cfg)
+    ini = TH.xu_initiator(cfg)
+    pts = {f: (xs.frames[f][0], xs.frames[f][1][np.flatnonzero(xs.labels[f] == 4)[0]])
+           for f in (1, 2, 3)}
+    cells = []
+    for fa, fb in ((1, 2), (2, 3)):
+        r, t, v, _ = (float(x[0]) for x in pair_parameters(
+            pts[fa][1][None], pts[fb][1][None], pts[fb][0] - pts[fa][0]))
+        cells.append((math.floor(r / ini.d_rho), math.floor(math.degrees(t) / ini.d_theta_deg),
+                      math.floor(v / ini.d_v)))
+    return float(sum(a != b for a, b in zip(*cells)))
+
+
 def _ex3_expected() -> float:
     from eotrack.experiments import track_init_hough as TH
 
@@ -80,15 +102,14 @@ register("track_init_hough.3", NumericAnswer(
     hint="read it from the left panel's title, or average the 'false' entry of "
          "explore_results(50.0, 6, False, False)"))
 
-register("track_init_hough.4", Choice(
-    "Critique. With the paper's 6-neighbourhood the nominal scene loses track 2 (seen in frames "
-    "1, 2 and 4). Why? (a) its two pair cells differ in two of (ρ, θ, v), so they are not "
-    "6-neighbours and neither cell reaches m − 1 = 3 frames; (b) its speed is outside the "
-    "velocity gate; (c) missing frame 3 breaks the 3/4 rule; (d) a residual star took one of "
-    "its detections.",
-    options=["a", "b", "c", "d"], answer="a",
-    hint="compute pair_parameters (§2) for its pairs frame 1→2 and 2→4, divide ρ, θ and v by "
-         "the cell sizes δρ, δθ, δv and compare the integer cell indices"))
+register("track_init_hough.4", NumericAnswer(
+    "Critique. On the nominal Xu scene (make_xu_scene(xu_config())) the paper's 6-neighbourhood "
+    "finds track 5 (seen in frames 2, 3 and 4) but loses track 2. Compute the cells "
+    "(⌊ρ/δρ⌋, ⌊θ/δθ⌋, ⌊v/δv⌋) of track 5's pairs frame 2→3 and frame 3→4 (the paper's cells, ρ "
+    "from the image corner) and give the number of the three indices in which they differ.",
+    expected=_ex4_expected, rtol=0.0, atol=0.0,
+    hint="the detections of track 5 are those with label 4; pair_parameters (§2) gives ρ, θ "
+         "(radians) and v for a pair and its time difference"))
 
 register("track_init_hough.5", Choice(
     "Critique. At the comparison's 10 px prediction gate with v_min = 10 px/s the angle-"
