@@ -97,6 +97,109 @@ def test_book_has_every_page_and_nothing_remote(book):
     assert (book / "_static" / "mathjax" / "tex-chtml.js").is_file(), "MathJax is not vendored"
 
 
+# --- static checks of the built HTML (issue 23) ---------------------------------------------
+SUBPACKAGES = ("astro", "exercises", "geometry", "imaging", "montecarlo", "notebook", "plotting",
+               "pose", "repro", "robust", "tracking", "validation")
+#: figures shown below 80 % of their size (wider than 900 px), by page, until their owners
+#: redraw them narrower (house style: at most 9 in at 100 dpi); value: owner
+WIDE_FIGURES_XFAIL = {
+    "notebooks/01_wransac_trajectory_prediction": "P01",
+    "notebooks/03_track_init_hypothesis_testing": "P03",
+    "notebooks/04_track_init_logic_hough": "P04",
+    "notebooks/05_akf_star_tracking": "P05",
+    "papers_repro/epipolar/REPORT": "P02",
+    "papers_repro/track_init_hough/REPORT": "P04",
+    "papers_repro/track_init_ht/REPORT": "P03",
+    "papers_repro/wransac/REPORT": "P01",
+}
+MAX_NATIVE_PX = 900  # the 720 px column / 0.8
+
+
+def _main(html: Path) -> str:
+    t = html.read_text(errors="replace")
+    return t[t.find("<main"):] if "<main" in t else t
+
+
+def _content_pages() -> list[str]:
+    pages = [p.with_suffix("").as_posix() for p in _pages()]
+    pages += [f"papers_repro/{p.parent.name}/REPORT"
+              for p in sorted((ROOT / "papers_repro").glob("*/REPORT.md"))]
+    return pages
+
+
+def test_no_tag_inside_split(book):
+    """MathJax refuses \\tag inside split ("\\tag not allowed in split environment")."""
+    bad = []
+    for html in book.rglob("*.html"):
+        for block in re.findall(r'<div class="math[^"]*"[^>]*>(.*?)</div>', html.read_text(
+                errors="replace"), re.S):
+            if re.search(r"\\begin\{split\}(?:(?!\\end\{split\}).)*\\tag", block, re.S):
+                bad.append(f"{html.relative_to(book)}: {block[:80]}")
+    assert not bad, "\\tag inside split (a MathJax error in the browser):\n" + "\n".join(bad[:10])
+
+
+@pytest.mark.parametrize("nb", _pages(), ids=lambda p: p.stem)
+def test_every_panel_says_it_needs_a_kernel(book, nb):
+    data = json.loads((ROOT / nb).read_text())
+    panels = sum(1 for c in data["cells"] for o in c.get("outputs", [])
+                 if "application/vnd.jupyter.widget-view+json" in o.get("data", {})
+                 and re.search(r"Slider|Dropdown|Checkbox|ToggleButton|VBox|interactive",
+                               "".join(o["data"].get("text/plain", ""))))
+    main = _main(book / nb.with_suffix(".html"))
+    notes = main.count("eotrack-kernel-note") + main.count("eotrack-widget-note")
+    assert notes >= panels, f"{nb}: {panels} panels but {notes} lines saying a kernel is needed"
+    if panels:
+        assert "make lab" in main
+
+
+def test_api_reference_and_general_index(book):
+    api = book / "notebooks" / "_book" / "api"
+    for sub in SUBPACKAGES:
+        page = api / f"eotrack.{sub}.html"
+        assert page.is_file(), f"no API page for eotrack.{sub}"
+        assert f'id="eotrack.{sub}.' in page.read_text(errors="replace"), (  # a documented object
+            f"the API page of eotrack.{sub} documents no object")
+    index = (book / "notebooks" / "00_index.html").read_text(errors="replace")
+    assert "_book/api/index.html" in index, "the index does not link the API reference"
+    gen = (book / "genindex.html").read_text(errors="replace")
+    assert gen.count("<li><a href=") > 200, "the general index is (nearly) empty"
+
+
+def test_reports_titled_by_paper_in_course_order(book):
+    index = (book / "notebooks" / "00_index.html").read_text(errors="replace")
+    links = re.findall(r'href="\.\./papers_repro/([a-z_]+)/REPORT\.html">([^<]+)<', index)
+    titles = list(dict(links).items())
+    assert titles, "the sidebar lists no reproduction report"
+    numbers = [t.split(" · ")[0] for _, t in titles]
+    assert numbers == sorted(numbers), f"reports not in the course's order: {titles}"
+    for slug, title in titles:
+        assert slug not in title and " · " in title, f"report {slug} titled {title!r}, not by paper"
+
+
+@pytest.mark.parametrize("page", _content_pages())
+def test_figures_have_alt_text_and_full_size(book, page, request):
+    from PIL import Image
+
+    html = book / f"{page}.html"
+    main = _main(html)
+    imgs = re.findall(r"<img\b[^>]*>", main)
+    no_alt = [i for i in imgs if not re.search(r'alt="[^"]+"', i)]
+    assert not no_alt, f"{page}: {len(no_alt)} of {len(imgs)} figures have no alt text"
+    wide = []
+    for tag in imgs:
+        m = re.search(r'src="([^"]+\.png)"', tag)
+        path = (html.parent / m.group(1)).resolve() if m else None
+        if path is not None and path.is_file():
+            w = Image.open(path).width
+            if w > MAX_NATIVE_PX:
+                wide.append(w)
+    if wide and page in WIDE_FIGURES_XFAIL:
+        request.applymarker(pytest.mark.xfail(
+            reason=f"figures still too wide, owner {WIDE_FIGURES_XFAIL[page]}", strict=False))
+    assert not wide, (f"{page}: figures {wide} px wide are shown below 80 % of their size in the "
+                      f"{MAX_NATIVE_PX * 0.8:.0f} px column")
+
+
 @pytest.fixture(scope="module")
 def chromium() -> str:
     path = shutil.which("chromium") or shutil.which("chromium-browser")
@@ -171,6 +274,9 @@ def test_page_shows_figures_and_typeset_math(browser, server, nb):
         if _has_math(nb):
             assert n_math > 0, f"{nb}: the notebook has LaTeX but the page no math elements"
         assert n_typeset >= n_math, f"{nb}: {n_math} equations but {n_typeset} typeset by MathJax"
+        errors = page.eval_on_selector_all("main mjx-merror", "els => els.map(e => e.getAttribute("
+                                           "'data-mjx-error') || e.textContent)")
+        assert not errors, f"{nb}: MathJax errors: {errors[:5]}"
         want = _image_outputs(nb)
         imgs = page.eval_on_selector_all(
             "main img", "els => els.filter(e => e.complete && e.naturalWidth > 0).length")

@@ -88,7 +88,7 @@ def test_small_text_at_book_width():
     assert "small-text" in _rules(fig)
     fig, ax = _clean()
     fig.set_size_inches(2 * BOOK_WIDTH_IN, 4)  # shrunk by half in the book
-    assert "small-text" in _rules(fig)
+    assert {"small-text", "too-wide"} <= set(_rules(fig))
 
 
 def test_same_colour_and_style():
@@ -176,3 +176,15 @@ def test_colour_coded_data_needs_a_key():
     ax.plot([], [], color="tab:red", ls="--", label="false pair")
     legend_outside(ax)
     assert "unkeyed-colours" not in _rules(fig)
+
+
+def test_describe_figure():
+    from eotrack.plotting import describe_figure
+
+    fig, (a, b) = plt.subplots(1, 2)
+    a.set_title("left")
+    b.set_title("right")
+    fig.suptitle("Both")
+    assert describe_figure(fig) == "Figure: Both — left; right"
+    with pytest.raises(TypeError, match="fig must be"):
+        describe_figure(a)

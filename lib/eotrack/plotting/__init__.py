@@ -35,7 +35,7 @@ The lint
 rendered bounding boxes, rotated labels as rotated boxes), a legend covering data, an axis
 without a label, text under 8 pt at the book's width, a figure or panel without a title, two
 series with the same colour and style, colour-coded data without any key, log-axis labels
-like ``2×10⁰``. ``tests/figures/`` runs
+like ``2×10⁰``, a figure so wide that the book shows it below 80 % of its size. ``tests/figures/`` runs
 it on every public figure function of the library.
 """
 

@@ -28,7 +28,11 @@ __all__ = ["RULES", "FigureProblem", "effective_font_scale", "lint_figure"]
 
 #: The lint's rules, in the order they are checked.
 RULES = ("overlapping-text", "legend-covers-data", "axis-label", "small-text", "title",
-         "same-style", "unkeyed-colours", "log-labels")
+         "same-style", "unkeyed-colours", "log-labels", "too-wide")
+
+#: A figure is shown at no less than this share of its size in the book (the browser shrinks a
+#: wider one to the column).
+MIN_BOOK_SCALE = 0.8
 
 
 @dataclass(frozen=True)
@@ -368,6 +372,22 @@ def _check_log_labels(fig: Figure) -> list[FigureProblem]:
     return out
 
 
+def _check_width(fig: Figure, renderer: Any) -> list[FigureProblem]:
+    import matplotlib as mpl
+
+    from .style import BOOK_COLUMN_PX
+
+    dpi = mpl.rcParams["savefig.dpi"]
+    dpi = fig.dpi if dpi == "figure" else float(dpi)
+    w_in = fig.get_tightbbox(renderer).width
+    scale = BOOK_COLUMN_PX / (w_in * dpi)
+    if scale < MIN_BOOK_SCALE:
+        return [FigureProblem("too-wide", f"{w_in:.1f} in wide at {dpi:g} dpi: the book shows it "
+                              f"at {100 * scale:.0f} % (minimum {100 * MIN_BOOK_SCALE:.0f} %); "
+                              f"at most {BOOK_COLUMN_PX / MIN_BOOK_SCALE / dpi:.1f} in")]
+    return []
+
+
 def lint_figure(fig: Any, *, rules: tuple[str, ...] = RULES) -> list[FigureProblem]:
     """Draw ``fig`` and return its readability problems (empty list: it passes).
 
@@ -405,6 +425,7 @@ def lint_figure(fig: Any, *, rules: tuple[str, ...] = RULES) -> list[FigureProbl
         "same-style": lambda: _check_same_style(fig),
         "unkeyed-colours": lambda: _check_unkeyed(fig, texts),
         "log-labels": lambda: _check_log_labels(fig),
+        "too-wide": lambda: _check_width(fig, renderer),
     }
     for r in RULES:
         if r in rules:
