@@ -814,8 +814,8 @@ if answer is not None:
 
 # %% [markdown]
 # **Exercise 3 (exploration).** From the Explore sweep `budget_err` (runs × budgets × methods ×
-# times), compute the fraction (0–1) of runs in which the Cauchy M-estimator started from RANSAC
-# (`"cauchy_ransac"`), with U = 5, keeps its whole 72-min Dec prediction within **15″**.
+# times), compute the fraction (0–1) of runs in which WRANSAC with the hypothesis weights
+# (`"wransac_hypothesis"`), with U = 10, keeps its whole 72-min Dec prediction within **20″**.
 
 # %%
 answer = None  # a fraction between 0 and 1
