@@ -34,11 +34,15 @@
 # ## Setup
 
 # %%
+import json
+from pathlib import Path
+
 from eotrack.exercises import check, exercise_ids
-from eotrack.notebook import setup_notebook, versions
+from eotrack.notebook import lesson_footer, lesson_header, setup_notebook, versions
 from eotrack.repro.collection import collection_notebooks, collection_scorecard
 from IPython.display import Markdown, display
 
+lesson_header("00")
 setup_notebook()
 notebooks = collection_notebooks()
 scores = collection_scorecard()
@@ -65,7 +69,8 @@ PATH = {
     "02": ("epipolar geometry between two star sensors, association of detections, "
            "triangulation", "01", "rotations, camera model, SVD"),
     "03": ("track initiation for dim targets: spatial clustering and temporal hypothesis "
-           "testing", "01", "binomial tests, false-alarm rates"),
+           "testing", "01 (scorecard conventions only, not RANSAC)",
+           "binomial tests, false-alarm rates"),
     "04": ("track initiation by logic n/m, classic and modified Hough transforms",
            "03", "Hough transform, gating"),
     "05": ("star tracking on a moving ship with an adaptive, occlusion-aware Kalman filter",
@@ -88,6 +93,61 @@ if len(extra):
     links = ", ".join(f"[{r.number} · {r.title}]({r.path})" for r in extra.itertuples())
     display(Markdown(f"Not tied to one paper: {links} — it composes the methods of the "
                      "notebooks before it, so take it last."))
+
+# %% [markdown]
+# ## Lab sheets
+#
+# One sheet per notebook for a teacher planning a session. The **run time** is measured: the
+# wall time of the notebook's last execution by `make execute` (`.ci/execute_notebooks.py`
+# records it in `notebooks/execution_times.json`), on whatever machine ran it. **Difficulty**
+# is our judgement: ★ first course in the topic, ★★ needs the prerequisites fluently, ★★★ a
+# project. The **exercises to hand in** are every checked exercise of the notebook (ids as in
+# the notebook); the rubric below grades them. The [teachers' page](_book/teachers.md) says
+# how to hand a lab out and how to hide the worked solutions.
+
+# %% tags=["hide-input"]
+# difficulty and the lab's focus: our judgement, not a measurement
+LAB = {
+    "01": ("★", "fit, predict, then ask why weighted RANSAC loses to plain RANSAC"),
+    "02": ("★★", "epipolar distances, a threshold trade-off, triangulation error"),
+    "03": ("★★", "false-alarm algebra of the clustering and the temporal test"),
+    "04": ("★★", "logic and Hough initiators under clutter; the chance-track rate"),
+    "05": ("★★★", "frames on a moving ship; an adaptive Kalman filter under occlusion"),
+    "06": ("★★★", "pose, its Cramér–Rao bound, and selecting the features that matter"),
+    "07": ("★★★", "one night through the whole chain; the error budget"),
+}
+times_file = Path("execution_times.json")
+times = json.loads(times_file.read_text()) if times_file.is_file() else {}
+slug_of = dict(zip(scores["notebook"], scores["slug"], strict=True))
+ids_all = exercise_ids()
+sheet = ["| # | run time | difficulty | prerequisites | lab focus | exercises to hand in |",
+         "|---|---|---|---|---|---|"]
+for nb in notebooks[notebooks["number"] != "00"].itertuples():
+    stars, focus = LAB.get(nb.number, ("—", "see the notebook's header"))
+    _, after, maths = PATH.get(nb.number, ("", "01", "—"))
+    t = times.get(nb.stem, {})
+    run = (f"{t['seconds'] / 60:.1f} min ({t.get('executed', '?')})" if "seconds" in t
+           else "not measured yet (`make execute`)")
+    slug = slug_of.get(nb.stem) or nb.stem.split("_")[1]
+    ex = [i for i in ids_all if i.split(".")[0] == slug]
+    pre = "none" if after == "—" else f"notebook {after}"
+    sheet.append(f"| {nb.number} | {run} | {stars} | {pre}; {maths} | {focus} | "
+                 f"{', '.join(f'`{i}`' for i in ex) or '—'} |")
+display(Markdown("\n".join(sheet)))
+
+# %% [markdown]
+# **Rubric** (per exercise: 2 points full, 1 half, 0 none; the lab's grade is the share of
+# the points of the exercises handed in):
+#
+# | exercise kind | full marks (2) | half marks (1) | no marks (0) |
+# |---|---|---|---|
+# | derivation | the result by hand, each step justified, and the numeric check agreeing (`check` says right) | right result, a step unjustified or the check not run | wrong result, or only the number |
+# | computation | `check` says right, and the code uses the library's public functions | right order of magnitude, a convention slip the hint names | wrong, or a value copied from the notebook |
+# | exploration | the asked number or curve from the panel, with the setting that gives it and one sentence on why | the number without the setting or the reason | no measurement |
+# | critique | names the erratum or assumption, measures its consequence, says what to adopt instead | names it without a measurement | restates the paper |
+#
+# Hand-in: the executed notebook (`.ipynb`); the `check` lines in it are the first pass of the
+# grading.
 
 # %% [markdown]
 # ## Scorecard of the collection
@@ -180,4 +240,8 @@ display(Markdown("\n".join(
 #
 # Code and notebooks: BSD 3-Clause (`LICENSE`). Star data: Gaia DR3 (ESA/Gaia/DPAC),
 # CC BY-SA 3.0 IGO. Cite the collection with `CITATION.cff`. Details: `data/README.md` and the
-# book's *Licences* page.
+# book's *Licences* page. The library's functions are documented in the book's
+# [API reference](_book/api/index.md).
+
+# %%
+lesson_footer("00")
