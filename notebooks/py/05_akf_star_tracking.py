@@ -46,7 +46,10 @@
 # %%
 import json
 
+from eotrack.notebook import lesson_header
 from eotrack.repro import papers_repro_dir
+
+lesson_header("05")
 from IPython.display import Markdown, display
 
 stored = json.loads((papers_repro_dir() / "akf_star" / "scorecard.json").read_text())
@@ -133,14 +136,26 @@ QUICK = False         # True: 4 seeds × 120 frames, like reproduce(quick=True)
 # $$\mathbf r^{C} = R_{B\to C}\,R_{N\to B}\,\mathbf r. \tag{1}$$
 # The deck turns by pitch θ about X (starboard), then roll φ about the new Y′ (bow). With the
 # paper's passive matrices
-# $$R_x(a)=\begin{pmatrix}1&0&0\\0&\cos a&\sin a\\0&-\sin a&\cos a\end{pmatrix},\qquad
-# R_y(a)=\begin{pmatrix}\cos a&0&-\sin a\\0&1&0\\\sin a&0&\cos a\end{pmatrix}\tag{3}$$
+#
+# $$
+# R_x(a)=\begin{pmatrix}1&0&0\\0&\cos a&\sin a\\0&-\sin a&\cos a\end{pmatrix},\qquad
+# R_y(a)=\begin{pmatrix}\cos a&0&-\sin a\\0&1&0\\\sin a&0&\cos a\end{pmatrix}
+# \tag{3}
+# $$
+#
 # the text's sequence is $R_{N\to B}=R_y(\varphi)R_x(\theta)R_z(-\psi)$ (heading included).
 # Eq. (2) prints $R_x(\varphi)R_y(\theta)$ — angles swapped and factors reversed; for
 # sea-state angles the difference is second order. The optical axis points at azimuth β and
-# elevation α on the deck, $R_{B\to C}=R_x(\alpha)R_z(-\beta)$; for small angles
-# $$R_{B\to C}\approx\begin{pmatrix}1&0&\beta\\0&1&-\alpha\\-\beta&\alpha&1\end{pmatrix}.\tag{5}$$
-# The three frames, drawn from these matrices:
+# elevation α on the deck, $R_{B\to C}=R_x(\alpha)R_z(-\beta)$. The paper prints as its
+# small-angle form the matrix with rows $(1, 0, \beta)$, $(0, 1, -\alpha)$, $(-\beta, \alpha, 1)$
+# — but that is not the first-order expansion of this product, which is (the library's form)
+#
+# $$
+# R_{B\to C}\approx\begin{pmatrix}1&-\beta&0\\\beta&1&\alpha\\0&-\alpha&1\end{pmatrix}
+# \tag{5}
+# $$
+#
+# The two differ at first order (checked below). The three frames, drawn from the matrices:
 
 # %%
 fig = A.plot_frames_schematic()
@@ -151,16 +166,25 @@ R = camera_from_level(psi, 0.0, 0.0, A0 - psi, h0)
 th, ph = np.radians(1.0), np.radians(2.5)
 order_effect = np.abs(deck_from_level(0, th, 0) @ deck_from_level(0, 0, ph)
                       - deck_from_level(0, 0, ph) @ deck_from_level(0, th, 0)).max()
-small = np.abs(camera_from_deck(0.01, 0.02) - camera_from_deck(0.01, 0.02, small_angle=True))
+al, be = 0.01, 0.02                       # elevation α, azimuth β (rad)
+eq5 = np.array([[1, -be, 0], [be, 1, al], [0, -al, 1]])              # eq. (5) as shown above
+eq5_printed = np.array([[1, 0, be], [0, 1, -al], [-be, al, 1]])      # the paper's matrix
+exact = camera_from_deck(be, al)
+small = np.abs(exact - eq5)
+printed_gap = float(np.abs(exact - eq5_printed).max())
+assert np.allclose(camera_from_deck(be, al, small_angle=True), eq5)
 checks = {"boresight on the star": bool(np.allclose(R @ enu_from_azalt(A0, h0), [0, 1, 0])),
           "R orthonormal": bool(np.allclose(R @ R.T, np.eye(3))),
           "pitch/roll order is a second-order effect": bool(order_effect <= 1.01 * th * ph),
-          "eq. (5) small-angle form good to 3e-4": bool(small.max() < 3e-4)}
+          "eq. (5) above (library form) good to 3e-4": bool(small.max() < 3e-4),
+          "eq. (5) as printed off at first order (> 0.01)": bool(printed_gap > 0.01)}
 assert all(checks.values())
 
 # %%
 # NBVAL_CHECK_OUTPUT
 print(checks)
+print(f"at α = {al}, β = {be}: the printed matrix is off by {round(printed_gap, 3)}, the "
+      f"library's by {small.max():.0e}")
 
 # %% [markdown]
 # ### Star angles from the image (eqs. 6–9)
@@ -282,7 +306,9 @@ print(f"R = (g95 - g5)/255 = {round(ad.dynamic_range, 2)}; adaptive finds the re
 # (`background_map`); a threshold on the filtered, background-subtracted image over the
 # *local* noise; every local maximum that rises above the saddle to its higher neighbour
 # (`deblend_peaks`); Gaussian-windowed centroids (`windowed_centroids`); fluxes in an aperture,
-# no cap. On a real crowded frame — M13, shipped with astropy — it finds SEP's 40 brightest
+# no cap; a threshold (4.5σ) with at most one false detection per 10⁶ px of noise; and
+# sharpness/roundness flags that drop cosmic rays and hot pixels (as DAOFIND and SEP flag
+# them). On a real crowded frame — M13, shipped with astropy — it finds SEP's 40 brightest
 # clean, isolated stars (`benchmarks/bench_extraction.py` compares completeness, centroids and
 # speed with SEP on simulated and real frames):
 
@@ -316,9 +342,15 @@ print(f"SEP's clean isolated stars found within 1 px — sky extractor: {round(f
 # frame period ΔT. Prediction (eqs. 31–32; eq. 31 wrongly adds the noise sample $W_{k-1}$ to
 # the estimate — the noise enters through Q):
 # $$\hat X_{k|k-1}=F\hat X_{k-1},\qquad P_{k|k-1}=FP_{k-1}F^\top+Q_{k-1}.\tag{31–32}$$
-# Singer model of the sway acceleration, an Ornstein–Uhlenbeck process:
-# $$\dot a=-\alpha a+w(t),\qquad q_a=\sigma_a^2=\frac{\sigma_w^2}{2\alpha}\big(1-e^{-2\alpha\Delta T}\big),
-# \qquad Q\approx\operatorname{diag}(0,0,0,0,q_a,q_a).\tag{33–35}$$
+# **Eq. (33) is inconsistent with eqs. (34)–(35).** It prints $\ddot u_s=-\alpha\dot u_s+w$,
+# a first-order Markov process on the *velocity*; eqs. (34)–(35) give the variance of Singer's
+# process on the *acceleration*, $\dot a=-\alpha a+w(t)$ (an Ornstein–Uhlenbeck process),
+# $$q_a=\sigma_a^2=\frac{\sigma_w^2}{2\alpha}\big(1-e^{-2\alpha\Delta T}\big),\qquad
+# Q\approx\operatorname{diag}(0,0,0,0,q_a,q_a).\tag{34–35}$$
+# **The model the filter runs is neither:** F is the constant-acceleration transition of
+# eq. (30), so the acceleration is a random walk whose per-frame increments have the variance
+# $q_a$ of eq. (34) — Singer's decay $e^{-\alpha\Delta T}$ is not in F. The Monte Carlo below
+# therefore checks eq. (34), not the model the filter runs.
 # Measurement and update:
 # $$Z_k=HX_k+V_k,\ V_k\sim N(0,R_k)\tag{36}$$
 # $$e_k=Z_k-H\hat X_{k|k-1},\tag{37}$$
@@ -384,13 +416,27 @@ print(kf_checks)
 # factor b,
 # $$R_k=(1-d_k)R_{k-1}+d_k\big(e_ke_k^\top-HP_{k|k-1}H^\top\big),$$
 # $$Q_k=(1-d_k)Q_{k-1}+d_k\big(K_ke_ke_k^\top K_k^\top+P_k-FP_{k-1}F^\top\big).\tag{41}$$
-# When the innovations are small compared with the predicted covariance the bracket in the R
-# update is negative definite and R loses positive definiteness. On accurate centroids
-# (σ = 0.05 px) with a generous prior: without a safeguard R becomes indefinite within a few
-# steps; ours symmetrises R, clips its eigenvalues to `ConfidenceConfig.r_bounds`, and projects
-# Q back onto the Singer structure with $q_a$ bounded.
+# **Why it fails.** At the first step $d_0=1$, so the old R is forgotten entirely and
+# $R_0=e_0e_0^\top-HP_{0|-1}H^\top$: a rank-one matrix minus a positive definite one. For any
+# $v\perp e_0$, $v^\top R_0v=-v^\top HP_{0|-1}H^\top v<0$ — in 2-D, $R_0$ is indefinite at
+# step 0, whatever the data (not only when innovations are small). The cell checks it over
+# noise levels and priors, then runs 60 steps with and without our safeguard, which
+# symmetrises R, clips its eigenvalues to `ConfidenceConfig.r_bounds` and projects Q back onto
+# the Singer structure with $q_a$ bounded.
 
 # %%
+step0 = []
+for noise in (0.05, 0.5, 5.0):
+    for prior in (P0, P0 / 100):
+        for _ in range(50):
+            z0 = np.array([3.0, -2.0]) + g.normal(0, noise, 2)
+            Pp = F @ prior @ F.T + Q
+            e0 = z0 - H @ (F @ x0)
+            R0 = np.outer(e0, e0) - H @ Pp @ H.T            # eq. (41) with d_0 = 1
+            step0.append(np.linalg.eigvalsh(R0)[0])
+step0 = np.array(step0)
+assert np.all(step0 < 0)
+
 zs2 = np.c_[10 * np.sin(0.7 * tt), 5 * np.cos(0.5 * tt)] + g.normal(0, 0.05, (300, 2))
 min_eig = {}
 for safe in (False, True):
@@ -415,6 +461,8 @@ fig = A.plot_sage_husa(min_eig)
 
 # %%
 # NBVAL_CHECK_OUTPUT
+print(f"R_0 indefinite at step 0 in all {len(step0)} draws (σ = 0.05-5 px, two priors): "
+      f"{bool(np.all(step0 < 0))}")
 print(f"without the safeguard R is indefinite from step {first_bad}; with it R stays positive "
       f"definite: {bool(min_eig['with safeguard'].min() > 0)}")
 
@@ -443,8 +491,13 @@ fig = A.plot_confidence_trace(seq_c, tr)
 # Per-frame error, its mean over the N frames, the success flag at threshold ε and the success
 # rate:
 # $$e_i=\sqrt{(x_i-\hat x_i)^2+(y_i-\hat y_i)^2},\qquad E=\frac1N\sum_{i=1}^Ne_i,\tag{47–48}$$
-# $$s_i=\begin{cases}1,&e_i\le\varepsilon\\0,&\text{otherwise}\end{cases},\qquad
-# P_s=\frac1N\sum_{i=1}^Ns_i.\tag{49–50}$$
+#
+# $$
+# s_i=\begin{cases}1,&e_i\le\varepsilon\\0,&\text{otherwise}\end{cases},\qquad
+# P_s=\frac1N\sum_{i=1}^Ns_i
+# \tag{49–50}
+# $$
+#
 # The paper does not give ε; we adopt ε = 2 px. For the cloud track above:
 
 # %%
@@ -459,10 +512,17 @@ pd.Series(metrics_c).to_frame("BEAK-ST, one cloud sequence")
 # Four variants: **Baseline** (global threshold + standard KF), **BEAK-ST-GT** (global +
 # confidence AKF), **BEAK-ST-SKF** (adaptive + standard KF), **BEAK-ST** (adaptive +
 # confidence AKF); every filter starts from the designated star (0.3 px error) with the same
-# Singer $q_a$ (sea state 3) and R = 0.25 px². The run below is `make repro`'s configuration.
+# Singer $q_a$ (sea state 3) and R = 0.25 px². The run below is `make repro`'s configuration:
+# the statuses come from the **pre-registered** settings (fixed before any result); the
+# settings tuned after inspecting track losses (*Exploratory settings* below) and a
+# constant-velocity KF (beyond the paper) run on the same sequences. Each claim is decided
+# per scenario on paired sequences, with t intervals Bonferroni-corrected within the claim.
 
 # %%
-res = A.run_ablation(cfg, runner=TrialRunner(progress=False))
+res = A.run_ablation(cfg, runner=TrialRunner(progress=False), extras=(
+    ("exploratory", A.exploratory_config(cfg), A.VARIANT_PARTS),
+    ("CV baseline", cfg, A.CV_BASELINE)))
+meas = A.claim_measurements(res)
 claims = load_claims("akf_star")
 rows = A.claim_results(res)
 card = scorecard(rows)
@@ -484,6 +544,14 @@ t2 = A.side_by_side(res.success_rate(), A.paper_table(claims["akf_star.table2"],
                                                       "success_rate"), 3)
 assert ((t2.filter(like="ours") >= 0) & (t2.filter(like="ours") <= 1)).all().all()
 t2
+
+# %% [markdown]
+# The verdict behind Table 1: per scenario the five paired differences the paper's ordering
+# needs (positive = the paper's side), with their Bonferroni-corrected intervals.
+
+# %%
+A.verdict_table(meas["akf_star.table1"], ["Baseline − BEAK-ST", "GT − BEAK-ST",
+                                          "SKF − BEAK-ST", "Baseline − GT", "Baseline − SKF"])
 
 # %% [markdown]
 # Continuity (estimate within the gate), median error and lost tracks — robust companions of
@@ -527,12 +595,42 @@ if same_as_report:
     assert stored_status == statuses, (stored_status, statuses)
 
 # %% [markdown]
-# **Reading.** Compare the tables: under strong and stray light the global μ + kσ threshold,
-# inflated by the sky gradient or the glare, loses the star, while the adaptive method keeps it.
-# The confidence AKF pays off under sway, where its Sage–Husa $q_a$ adapts to a rougher sea than
-# the filter was initialised for. At low SNR, with faint and often missing centroids, its
-# confidence is low and its adapted noise noisy. Our absolute errors are far below the paper's
-# because our centroids are accurate and ε = 2 px; the paper's OTB100 data and ε are unknown.
+# **Reading** (computed below from the tables above). The adaptive threshold is the module
+# that matters: where the global μ + kσ threshold, inflated by a gradient or glare, loses the
+# star, the adaptive variants keep it. The confidence AKF, with the pre-registered settings,
+# does not buy robustness: it loses the star in rough seas and under clouds, where a standard
+# KF on the same centroids does not. The tuned (exploratory) settings repair much of this, but
+# they were chosen after seeing these failures and cannot make a claim reproduced.
+
+# %%
+E, Ex = res.mean_error(), res.extra["exploratory"].mean_error()
+lost = res.lost_fraction()
+lines = [f"- **{sc}**: lowest mean error {E.loc[sc].idxmin()} ({E.loc[sc].min():.2f} px); "
+         f"BEAK-ST {E.loc[sc, 'BEAK-ST']:.2f} px (lost {100 * lost.loc[sc, 'BEAK-ST']:.0f} % of "
+         f"tracks), exploratory BEAK-ST {Ex.loc[sc, 'BEAK-ST']:.2f} px; paper's BEAK-ST "
+         f"{t1.loc[sc, 'BEAK-ST paper']:.2f} px" for sc in E.index]
+display(Markdown("\n".join(lines)))
+
+# %% [markdown]
+# ### A constant-velocity baseline (beyond the paper)
+#
+# The same adaptive centroids through a plain constant-velocity KF (white-acceleration noise
+# matched to the sea-state prior), paired with the ablation's variants:
+
+# %%
+cv = res.extra["CV baseline"].mean_error()["CV KF"]
+cv_tab = pd.DataFrame({"CV KF": cv, "CA KF (BEAK-ST-SKF)": E["BEAK-ST-SKF"],
+                       "BEAK-ST": E["BEAK-ST"], "BEAK-ST (exploratory)": Ex["BEAK-ST"]}).round(3)
+sway = "ship sway"
+assert cv[sway] < min(E.loc[sway, "BEAK-ST-SKF"], Ex.loc[sway, "BEAK-ST"])
+display(cv_tab)
+display(Markdown(
+    f"Under sway the CV filter's mean error is {cv[sway]:.3f} px against "
+    f"{E.loc[sway, 'BEAK-ST-SKF']:.2f} px for the CA filter and {Ex.loc[sway, 'BEAK-ST']:.2f} px "
+    "for the tuned BEAK-ST, with centroids good to a few hundredths of a pixel (*Beyond*, "
+    "centroid accuracy): the sway errors of the CA filters are **filter lag** — a model "
+    "whose acceleration states chase the sway with too little process noise — not "
+    "measurement noise, and no confidence gate fixes that."))
 
 # %% [markdown]
 # ## Explore
@@ -552,6 +650,8 @@ if same_as_report:
 # - **b, λ, γ, η** re-run only the confidence filter (BEAK-ST) on the stored centroids.
 
 # %%
+from dataclasses import replace
+
 EXPLORE_SEEDS = (0, 1, 2)     # the reproduction's first three sequences of each scenario
 OCCLUSIONS = (10, 25)         # 10: the reproduction's cloud preset; 25: simulated here
 session = A.ExploreSession(ablation=res)
@@ -565,8 +665,8 @@ assert np.allclose(same, stored_errors, atol=1e-4)   # stored as float32
 
 def draw(scenario_name, seed, occlusion_frames, b, lam, gamma, eta):
     errs = session.errors(scenario_name, seed=seed, occlusion_frames=occlusion_frames,
-                          confidence=ConfidenceConfig(forgetting=b, lam=lam, gamma=gamma,
-                                                      eta=eta), variants=SHOWN)
+                          confidence=replace(cfg.confidence, forgetting=b, lam=lam,
+                                             gamma=gamma, eta=eta), variants=SHOWN)
     occ = (f"{occlusion_frames}-frame occlusions" if scenario_name == "cloud"
            else "no clouds")
     # the filter's setting in the title: a move that changes no estimate still shows
@@ -582,7 +682,7 @@ explore = panel(draw,
                 occlusion_frames=dropdown("occlusion (frames, cloud)", list(OCCLUSIONS), 10),
                 b=float_slider("forgetting b", 0.90, 0.995, 0.005, 0.97),
                 lam=float_slider("λ (R inflation)", 1.0, 50.0, 1.0, 10.0),
-                gamma=float_slider("γ (D_M tolerance)", 1.0, 10.0, 0.5, 5.0),
+                gamma=float_slider("γ (D_M tolerance)", 1.0, 10.0, 0.5, cfg.confidence.gamma),
                 eta=float_slider("η (1/σ)", 0.2, 5.0, 0.2, 1.0),
                 enabled_when={"occlusion_frames": ("scenario_name", ["cloud"])})
 
@@ -604,7 +704,7 @@ lost
 # | where | paper | adopted |
 # |---|---|---|
 # | eq. (2) | $R_x(\varphi)R_y(\theta)$ | $R_y(\varphi)R_x(\theta)$ (the text's pitch-then-roll; second-order difference) |
-# | eq. (5) | azimuth about Y (the optical axis); small-angle matrix = transpose of the product | azimuth about the vertical: $R_x(\alpha)R_z(-\beta)$ |
+# | eq. (5) | azimuth about Y (the optical axis); the printed small-angle matrix is not the product's expansion (off at first order) | azimuth about the vertical: $R_x(\alpha)R_z(-\beta)$, small-angle form as shown above (eq. 5) |
 # | eq. (10) | Z as the optical axis | Y′ is the optical axis (Fig. 3); eq. (10) checked in its own convention |
 # | eq. (12) | Earth term without latitude | the diurnal rates (errors in the next cell) |
 # | eqs. (21)–(22) | σ_f called a variance; $T_f\ge I_f$ | standard deviation; $I_f\ge T_f$ |
@@ -612,10 +712,11 @@ lost
 # | eqs. (28)–(29) | weights I over the thresholded region | weights $I-B$; region grown by 2 px (the library default; the paper's region biases centroids — see *Beyond*) |
 # | §1.3 | — | no cap on the number of detections |
 # | eq. (31) | adds the noise sample to the prediction | the mean is predicted; noise enters through Q |
+# | eq. (33) | $\ddot u_s=-\alpha\dot u_s+w$: Markov process on the velocity, inconsistent with eqs. (34)–(35) | the filter runs constant acceleration (random-walk a) with Q of eqs. (34)–(35); neither eq. (33) nor Singer's decaying a |
 # | eq. (41) | $d_k = 1-b/1-b^k$ | $d_k=(1-b)/(1-b^{k+1})$; safeguard on R and Q |
 # | eq. (42) | $C_{img}$ undefined | SNR × flux consistency |
 # | eq. (46) | "Q increased" during occlusion, no law | Q × (1 + 0.5 n_missed), at most × 20 |
-# | §2 | OTB100 frames; ε, ω, η, γ, λ, b, k, k_b, r, σ_b not given | simulated ship sequences; ε = 2 px, ω = 0.5, η = 1, γ = 5, λ = 10, b = 0.97, k = 4, k_b = 3, r = 7, σ_b = 6 px |
+# | §2 | OTB100 frames; ε, ω, η, γ, λ, b, k, k_b, r, σ_b not given | simulated ship sequences; ε = 2 px, ω = 0.5, η = 1, γ = 3 (pre-registered; 5 exploratory), λ = 10, b = 0.97, k = 4, k_b = 3, r = 7, σ_b = 6 px |
 # | abstract | 40 % lower error, continuity > 95 % | Table 1 gives a larger reduction (exercise 5); continuity = "estimate within the gate" |
 
 # %%
@@ -629,10 +730,12 @@ display(Markdown(
     f"its own size, not by a few per cent."))
 
 # %% [markdown]
-# **Exploratory settings — chosen after looking at track losses.** These were fixed before
-# the run reported above but after earlier runs had shown tracks being lost; they aim at a
-# filter that does not lose the star for avoidable reasons, not at the paper's numbers, and
-# they are *exploratory*: a status that depends on them is no stronger than that.
+# **Exploratory settings — chosen after looking at track losses.** Earlier runs that had
+# shown tracks being lost led to these values. They aim at a filter that does not lose the
+# star for avoidable reasons, not at the paper's numbers, but they were chosen after seeing
+# results, so they never set a status: the statuses use the first committed (pre-registered)
+# values, and the tuned ones are reported beside them (REPORT's "variant" column and the
+# exploratory tables).
 #
 # | setting (exploratory) | value | what was seen with the alternative |
 # |---|---|---|
@@ -649,16 +752,17 @@ display(Markdown(
 # **A constant-velocity KF and filter consistency.** On sway, cloud and low-SNR sequences
 # (adaptive extraction) we compare the standard CA filter, a CV filter and BEAK-ST. NEES uses
 # the position block of P against the true position, NIS the innovations; both have mean 2
-# for a consistent filter (2 degrees of freedom): far above 2 is over-confident, far below
-# over-cautious.
+# for a consistent filter (2 degrees of freedom; Bar-Shalom et al. 2001, §5.4): far above 2
+# is over-confident, far below over-cautious.
 
 # %%
 A.consistency_table(cfg)
 
 # %% [markdown]
 # **Sensitivity of BEAK-ST in a rough sea (exploratory).** Sea state 5, six sequences; "lost"
-# is the fraction of sequences whose final estimate is more than the gate from the star. This
-# study is what led to γ = 5 — it is exploratory evidence, not a test.
+# is the fraction of sequences whose final estimate is more than the gate from the star; every
+# row uses the tuned bounds on R and q_a. This study is what led to γ = 5 — it is exploratory
+# evidence, not a test.
 
 # %%
 A.sensitivity_table(cfg)
@@ -674,10 +778,12 @@ A.centroid_bias_table()
 
 # %% [markdown]
 # **Recommendation.** For a star sensor, use a local-background extractor with accurate
-# centroids, and a plain Kalman filter whose process noise matches the sea state; add the
-# confidence gating where measurements are unreliable (clouds, low SNR), with a bounded
-# Sage–Husa estimator — unbounded, it fails. The batched filter
-# (`kalman_filter_batch`) runs many such filters at once with independent dropouts.
+# centroids and a plain Kalman filter whose motion model and process noise match the sea
+# state (here a constant-velocity filter beats both constant-acceleration ones under sway,
+# though without track maintenance it too loses the star under clouds and at low SNR).
+# Our runs do not show the confidence gating paying off; if you use Sage–Husa, bound it —
+# unbounded, it is indefinite from its first step. The batched filter (`kalman_filter_batch`)
+# runs many such filters at once with independent dropouts.
 
 # %% [markdown]
 # ## Key points
@@ -687,9 +793,13 @@ A.centroid_bias_table()
 # - A threshold must be local: global μ + kσ fails under gradients and glare. On real skies a
 #   local *noise* (from clipped meshes), deblending and windowed centroids matter as much.
 # - The Kalman update (eqs. 36–40) is a few lines; the modelling lives in F, Q and R.
-# - Sage–Husa estimates R and Q on line but can lose positive definiteness; bound it.
-# - Confidence gating helps when measurements are unreliable and costs little otherwise.
-# - An ablation is only as strong as its settings: say which were chosen after looking.
+# - Sage–Husa with $d_0=1$ starts from $ee^\top-HPH^\top$, indefinite in 2-D from step 0: bound it.
+# - Match the motion model to the motion: a constant-velocity KF tracks the sway with a small
+#   fraction of the constant-acceleration filters' error; the rest is lag, not noise.
+# - Confidence gating did not buy robustness here: with settings fixed in advance it loses the
+#   star in rough seas and under clouds; a 25-frame occlusion defeats every variant (*Explore*).
+# - An ablation is only as strong as its settings: fix them before the run, decide per
+#   scenario with intervals, and label what was tuned after looking as exploratory.
 
 # %% [markdown]
 # ## Exercises
@@ -716,8 +826,12 @@ if d is not None:
     check("akf_star.2", d)
 
 # %% [markdown]
-# **3 (computation).** With `A.diurnal_check()`, find the median relative error of eq. (12)'s
-# Earth-rotation rates against astropy.
+# **3 (computation).** With `A.diurnal_check(n_stars=60, min_alt_deg=30)` — 60 stars above
+# 30°, not the 30 above 15° shown earlier — find the median relative error of eq. (12)'s
+# Earth-rotation rates against astropy. The mapping: eq. (12)'s $(\dot u,\dot v)/f$ is read
+# as $(\cos h\,\dot A,\ \dot h)$, i.e. $-\omega_e\sin A\cos h$ is the azimuthal rate and
+# $-\omega_e\cos A\cos h$ the altitude rate; a star's relative error is
+# $|r_{\rm paper}-r_{\rm astropy}|/|r_{\rm astropy}|$ of that 2-vector.
 
 # %%
 answer = None
@@ -778,3 +892,13 @@ if answer is not None:
 #    37(9):1834–1848, 2015. [doi:10.1109/TPAMI.2014.2388226](https://doi.org/10.1109/TPAMI.2014.2388226)
 # 10. Labbe R. *Kalman and Bayesian Filters in Python*, 2020.
 #     <https://github.com/rlabbe/Kalman-and-Bayesian-Filters-in-Python>
+# 11. Bar-Shalom Y., Li X.R., Kirubarajan T. *Estimation with Applications to Tracking and
+#     Navigation.* Wiley, 2001 (NEES and NIS, §5.4).
+#     [doi:10.1002/0471221279](https://doi.org/10.1002/0471221279)
+# 12. Labbe R. *FilterPy* (the reference Kalman filter our library is tested against).
+#     <https://github.com/rlabbe/filterpy>
+
+# %%
+from eotrack.notebook import lesson_footer
+
+lesson_footer("05")

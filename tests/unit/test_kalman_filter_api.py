@@ -34,7 +34,7 @@ def _pair(dt=0.2, q=3.0, r=0.5):
 def test_setting_F_and_Q_before_predict_matches_filterpy():
     ours, fp = _pair()
     rng = np.random.default_rng(1)
-    for k in range(30):
+    for _ in range(30):
         dt = rng.uniform(0.05, 0.6)
         F, _ = constant_velocity_model(dt)
         Q = white_acceleration_noise(dt, 3.0)
