@@ -329,7 +329,7 @@ pd.Series({f"pixels above CFAR in frame {k}": int(g_k.sum()),
 # A Monte Carlo estimate is a count, $k$ successes in $n$ trials; a formula's value $p$ *agrees*
 # when it lies in a confidence interval for $k/n$. `mc_agreement` uses the Wilson interval [2]
 # (sensible even for $k = 0$; Clopper–Pearson [3] is the exact alternative, compared in [4]) at
-# 99.9 % per point, the level fixed in claims.toml.
+# 99.9 %, the level fixed in claims.toml.
 #
 # **Many points.** Checking $m$ points at 99.9 %, a *correct* formula leaves some interval with
 # probability up to $m \times 0.001$ (Bonferroni [10], valid without independence); the result
