@@ -104,7 +104,7 @@ display(Markdown(
 # accepts chance alignments the χ² test refuses; and greedy confirmation in cell order lets
 # those tracks take objects' detections.
 #
-# ## Exercise 4 — why the 6-neighbourhood loses track 2
+# ## Exercise 4 — the cells of track 5's pairs, and why track 2 is lost
 
 # %%
 xs = TH.make_xu_scene(cfg)
@@ -119,9 +119,18 @@ for fa, fb in [(0, 1), (1, 3)]:
                   math.floor(v_ / ini.d_v), int(s_)))
 diff = np.abs(np.subtract(cells[0][:3], cells[1][:3]))
 assert diff.sum() >= 2 and diff.max() == 1
-assert check("track_init_hough.4", "a")
-display(Markdown(f"Cells of the pairs 1→2 and 2→4: {cells[0]} and {cells[1]} — they differ in "
-                 f"{int(diff.sum())} of (ρ, θ, v): 26-neighbours, not 6-neighbours."))
+pts5 = {f: xs.frames[f][1][np.flatnonzero(xs.labels[f] == 4)[0]] for f in (1, 2, 3)}
+cells5 = []
+for fa, fb in [(1, 2), (2, 3)]:
+    r_, t_, v_, s_ = (float(x[0]) for x in pair_parameters(pts5[fa][None, :], pts5[fb][None, :],
+                                                           float(fb - fa)))
+    cells5.append((math.floor(r_ / ini.d_rho), math.floor(math.degrees(t_) / ini.d_theta_deg),
+                   math.floor(v_ / ini.d_v)))
+n_diff5 = sum(a != b for a, b in zip(*cells5))
+assert check("track_init_hough.4", n_diff5)
+display(Markdown(f"Track 5's pair cells {cells5[0]} and {cells5[1]} differ in {n_diff5} index: "
+                 f"6-neighbours, confirmed. Track 2's, {cells[0][:3]} and {cells[1][:3]}, differ "
+                 f"in {int((diff > 0).sum())}: 26-neighbours only, so it is lost."))
 
 # %% [markdown]
 # Missing frame 3 is allowed by 3/4 (three of four frames), the speed is well inside the gate,
