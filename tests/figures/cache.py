@@ -7,6 +7,7 @@ back in well under a second. Delete the folder to force a fresh run.
 
 from __future__ import annotations
 
+import functools
 import hashlib
 import pickle
 from collections.abc import Callable
@@ -18,8 +19,10 @@ CACHE_DIR = ROOT / "build" / "figure-lint-cache"
 LIB = ROOT / "lib" / "eotrack"
 
 
+@functools.cache
 def source_hash(*packages: str) -> str:
-    """SHA-256 (16 hex digits) of the ``.py`` files of ``eotrack.<package>`` folders."""
+    """SHA-256 (16 hex digits) of the ``.py`` files of ``eotrack.<package>`` folders (computed
+    once per test session, so edits made while the lint runs do not restart its runs)."""
     h = hashlib.sha256()
     for pkg in (*packages, "plotting"):
         for p in sorted((LIB / pkg.replace(".", "/")).rglob("*.py")):
