@@ -186,11 +186,10 @@ pd.DataFrame({k: {"inliers": r.n_inliers,
               for k, r in rows.items()}).T
 
 # %% [markdown]
-# Look at the attitude errors: in an image like this one they can be tens of degrees, yet the
-# data are not mis-fitted. A small plane seen from 10 m through this much noise has two nearly
-# equally good poses (the planar "flip" ambiguity). Compare the reprojection cost of the
-# estimate with that of the truth on the same clean inliers — the estimate can fit the noisy
-# data at least as well as the truth:
+# The attitude errors can be tens of degrees, yet the data are not mis-fitted: a small plane
+# seen from 10 m through this much noise has two nearly equally good poses (the planar "flip"
+# ambiguity). The reprojection cost of the estimate against that of the truth, on the same
+# clean inliers:
 
 # %%
 inl = res.inliers & ~scene.gross
@@ -540,10 +539,9 @@ else:
                           for cid in committed}).T)
 
 # %% [markdown]
-# **Exploratory: more runs.** The statuses stay with the pre-registered 300 runs. Pooling the
-# default run with the five seeds' runs (six times the paper's count, the same paired runs as
-# the stability table's; decided after seeing it, so it cannot change a status) gives a
-# tighter paired interval on the size of the effect:
+# **Exploratory: more runs.** Pooling the default and the five seeds' runs (6 × 300 paired
+# runs; decided after seeing the table, so it cannot change a status) narrows the interval on
+# the size of the effect:
 
 # %%
 pooled_runs = E.pooled_seed_runs((None,) if QUICK else (None, 1, 2, 3, 4, 5),
