@@ -330,7 +330,7 @@ def render_maps(scenario: Scenario, obs: Observation, rng: np.random.Generator, 
 
 def plot_fig3(scenario: Scenario, obs: Observation, images: list[np.ndarray], *, fig=None):
     """Fig. 3: the four star maps, GEO objects labelled, false targets boxed."""
-    fig = fig if fig is not None else plt.figure(figsize=(9, 9))
+    fig = fig if fig is not None else plt.figure(figsize=(8.0, 8.0))
     axes = fig.subplots(2, 2)
     for k, ax in enumerate(axes.ravel()):
         img = images[k]
@@ -366,22 +366,25 @@ def plot_fig3(scenario: Scenario, obs: Observation, images: list[np.ndarray], *,
 def plot_fig4(scenario: Scenario, obs: Observation, matches, *, fig=None):
     """Fig. 4(a)–(f): the six map pairs side by side, lines between associated points
     (green: correct, red: false association)."""
-    fig = fig if fig is not None else plt.figure(figsize=(10, 6.6))
+    fig = fig if fig is not None else plt.figure(figsize=(8.0, 6.4))
     axes = fig.subplots(3, 2)
     w, h = scenario.cameras[0].size
     for ax, (a, b), lab in zip(axes.ravel(), PAIRS, PAIR_LABELS):
+        first = ax is axes.ravel()[0]
         for k, off in ((a, 0.0), (b, w + 20.0)):
             p, lb = obs.points[k], obs.labels[k]
             ax.add_patch(plt.Rectangle((off - 0.5, -0.5), w, h, fill=False, ec="0.5"))
-            ax.plot(p[lb >= 0, 0] + off, p[lb >= 0, 1], "o", ms=4, color="k")
-            ax.plot(p[lb < 0, 0] + off, p[lb < 0, 1], "s", ms=5, mfc="none", color="tab:red")
+            ax.plot(p[lb >= 0, 0] + off, p[lb >= 0, 1], "o", ms=4, color="k",
+                    label="object image" if first and off == 0 else None)
+            ax.plot(p[lb < 0, 0] + off, p[lb < 0, 1], "s", ms=5, mfc="none", color="tab:red",
+                    label="false target" if first and off == 0 else None)
         pairs = matches[(a, b)][0]
         la, lb2 = obs.labels[a], obs.labels[b]
         for i, j in pairs:
             ok = la[i] == lb2[j] and la[i] >= 0
             ax.plot([obs.points[a][i, 0], obs.points[b][j, 0] + w + 20],
                     [obs.points[a][i, 1], obs.points[b][j, 1]],
-                    color="tab:green" if ok else "tab:red", lw=1)
+                    color="tab:green" if ok else "tab:red", lw=1, ls="-" if ok else "--")
         ax.set_xlim(-10, 2 * w + 30)
         ax.set_ylim(h + 10, -10)
         ax.set_aspect("equal")
@@ -395,7 +398,16 @@ def plot_fig4(scenario: Scenario, obs: Observation, matches, *, fig=None):
                        f"all {len(pairs)} line(s) here are false"))
             ax.text(w + 10, h / 2, note, ha="center", va="center", fontsize=9,
                     bbox={"fc": "white", "ec": "0.5", "alpha": 0.9})
-    fig.tight_layout()
+    from matplotlib.lines import Line2D
+
+    handles = [Line2D([], [], color="tab:green", lw=1, label="correct association"),
+               Line2D([], [], color="tab:red", lw=1, ls="--", label="false association"),
+               Line2D([], [], marker="o", ls="", ms=4, color="k", label="object image"),
+               Line2D([], [], marker="s", ls="", ms=5, mfc="none", color="tab:red",
+                      label="false target")]
+    fig.tight_layout(rect=(0, 0.06, 1, 1))
+    legend_outside(fig, where="below", ncol=4, handles=handles,
+                   labels=[hd.get_label() for hd in handles])
     return fig
 
 
