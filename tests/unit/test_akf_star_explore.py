@@ -112,3 +112,22 @@ def test_bad_input(res):
         A.sequence_seed(res.config, -1)
     with pytest.raises(ValueError, match="errors"):
         A.plot_explore_errors({}, "empty")
+
+
+def test_curves_by_scenario_one_panel_per_scenario_and_bad_kind():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    import numpy as np
+    import pytest
+    from eotrack.experiments import akf_star as A
+
+    cfg = A.AblationConfig(n_seeds=2, n_frames=20)
+    res = A.AblationResult(np.ones((2, 2, 4, 20), np.float32), np.zeros((2, 2, 4, 20), np.int8),
+                           np.ones((2, 2, 20)), ("cloud", "sway"), A.VARIANTS, cfg)
+    fig = A.plot_curves_by_scenario(res, "success")
+    assert [ax.get_title() for ax in fig.axes] == ["cloud occlusion", "ship sway"]
+    plt.close(fig)
+    with pytest.raises(ValueError, match="kind"):
+        A.plot_curves_by_scenario(res, "median")

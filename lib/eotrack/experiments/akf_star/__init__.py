@@ -31,6 +31,7 @@ from .explore import ExploreSession
 from .figures import (
     VARIANT_STYLES,
     plot_confidence_trace,
+    plot_curves_by_scenario,
     plot_diurnal_check,
     plot_error_curves,
     plot_example_frames,
@@ -104,6 +105,7 @@ __all__ = [
     "paired_interval",
     "paper_table",
     "plot_confidence_trace",
+    "plot_curves_by_scenario",
     "plot_diurnal_check",
     "plot_error_curves",
     "plot_example_frames",
@@ -178,8 +180,6 @@ def reproduce(*, quick: bool = False, runner: TrialRunner | None = None,
         generator of the run is derived (sequences through ``np.random.SeedSequence``, the
         headline's bootstrap too).
     """
-    import matplotlib.pyplot as plt
-
     cfg = AblationConfig(n_seeds=4, n_frames=120) if quick else AblationConfig()
     boot_rng = None
     if seed is not None:
@@ -231,10 +231,8 @@ def reproduce(*, quick: bool = False, runner: TrialRunner | None = None,
         "EXPLORATORY (tuned settings) — mean tracking error (px)": xr.mean_error().round(2),
         "EXPLORATORY (tuned settings) — success rate": xr.success_rate().round(3),
     }
-    fig6, ax6 = plt.subplots(figsize=(6.4, 4.0))
-    plot_error_curves(res, ax=ax6)
-    fig7, ax7 = plt.subplots(figsize=(6.4, 4.0))
-    plot_success_curves(res, ax=ax7)
+    fig6 = plot_curves_by_scenario(res, "error")
+    fig7 = plot_curves_by_scenario(res, "success")
     settings = {"n_seeds": cfg.n_seeds, "n_frames": cfg.n_frames, "epsilon_px": cfg.epsilon_px,
                 "gate_px": cfg.gate_px, "gate_sigma": cfg.gate_sigma,
                 "gate_max_px": cfg.gate_max_px, "hold_after": cfg.hold_after,

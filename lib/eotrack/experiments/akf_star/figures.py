@@ -63,8 +63,41 @@ def plot_error_curves(res: AblationResult, ax: Any = None, *, scenario: str | No
     ax.set_yscale("log")
     ax.set_title("Fig. 6 — mean tracking error over the frames"
                  + (f" ({SCENARIO_LABELS[scenario]})" if scenario else " (all scenarios)")
-                 + f", {res.config.n_seeds} seeds")
+                 + f", {res.config.n_seeds} sequences")
     return ax.figure
+
+
+def plot_curves_by_scenario(res: AblationResult, kind: str = "error", axes: Any = None) -> Any:
+    """Figs. 6–7 per scenario (one panel each, as the claims are decided): the frame-wise mean
+    error (``kind="error"``, log scale) or success rate (``kind="success"``) of the variants."""
+    import matplotlib.pyplot as plt
+
+    if kind not in ("error", "success"):
+        raise ValueError(f"kind must be 'error' or 'success', got {kind!r}")
+    n = len(res.scenarios)
+    if axes is None:
+        fig, axes = plt.subplots(1, n, figsize=(3.1 * n, 3.4), sharey=True)
+        fig.subplots_adjust(wspace=0.08, bottom=0.3, top=0.82)
+    axes = np.ravel(axes)
+    for i, (ax, sc) in enumerate(zip(axes, res.scenarios)):
+        e = res.errors[i].astype(float)
+        vals = e.mean(axis=0) if kind == "error" else (e <= res.config.epsilon_px).mean(axis=0)
+        for v, c in zip(res.variants, vals):
+            ax.plot(np.arange(1, c.size + 1), c, label=v, **VARIANT_STYLES.get(v, {}))
+        if kind == "error":
+            ax.set_yscale("log")
+        else:
+            ax.set_ylim(-0.02, 1.02)
+        ax.set_title(SCENARIO_LABELS.get(sc, sc), fontsize=9)
+        ax.set_xlabel("frame")
+    axes[0].set_ylabel("mean tracking error (px)" if kind == "error"
+                       else f"success rate (e ≤ {res.config.epsilon_px:g} px)")
+    axes[0].figure.legend(*axes[0].get_legend_handles_labels(), loc="lower center",
+                          ncol=len(res.variants), fontsize=8, frameon=False)
+    axes[0].figure.suptitle(
+        ("Fig. 6 — mean tracking error" if kind == "error" else "Fig. 7 — success rate")
+        + f" per scenario ({res.config.n_seeds} sequences each)", fontsize=10)
+    return axes[0].figure
 
 
 def plot_success_curves(res: AblationResult, ax: Any = None, *, scenario: str | None = None
@@ -78,7 +111,7 @@ def plot_success_curves(res: AblationResult, ax: Any = None, *, scenario: str | 
     ax.set_ylim(-0.02, 1.02)
     ax.set_title("Fig. 7 — mean success rate over the frames"
                  + (f" ({SCENARIO_LABELS[scenario]})" if scenario else " (all scenarios)")
-                 + f", {res.config.n_seeds} seeds")
+                 + f", {res.config.n_seeds} sequences")
     return ax.figure
 
 
