@@ -11,37 +11,35 @@
 #
 # **Paper.** Xu Zhanwei, Wang Xin. *Track initiation in electro-optical tracking of space
 # objects* (空间目标光电跟踪中的航迹起始方法). Acta Astronomica Sinica **57**(2):211–218, 2016 [1]
-# (no DOI is printed in our source; the paper is indexed by CNKI). Baselines from the same
+# (no DOI is printed in our source; the paper is indexed by CNKI), after the modified Hough of
+# Lo et al. [9]. Baselines from the same
 # collection: the logic *n/m* rule [2], the angle-constrained logic of Yuan et al. [3] and the
 # classic Hough transform [4, 5].
 #
-# **What the paper does.** After the catalogue stars are removed, a telescope frame still holds
-# a few *candidates*: moving objects plus stars the removal missed. Track *initiation* decides
-# which candidates of different frames belong to one object before a tracker takes over. Over a
-# few seconds a space object moves on a straight line at constant speed on the image, so Xu &
+# **What the paper does.** After star removal a frame still holds *candidates*: moving objects
+# and missed stars. Track *initiation* decides which candidates of different frames are one
+# object. A space object moves on a straight line at constant speed over a few seconds, so Xu &
 # Wang vote with *pairs* of candidates (current frame and the two before it, inside a velocity
-# gate) in a four-parameter space (ρ, θ, v, s): the image line, the speed and the direction. A
-# cell holding detections of m − 1 of the last m frames is a track (3/4 rule). Their experiment:
-# 4 frames of a 40 cm telescope with one real and four simulated objects — all five found,
+# gate) for the line, speed and direction (ρ, θ, v, s); a cell with detections of m − 1 of the
+# last m frames is a track (3/4 rule). Their 4-frame experiment finds all five objects and
 # nothing else.
 #
 # **What this notebook adds.** The lost Tables 1–2 rebuilt as stated assumptions, the paper's
 # procedure run literally, and an improved initiator — the same 3-of-4 rule with a χ² test at
-# the centroid noise and conflicts resolved best fit first — compared on 100 random scenes with
-# the analytic chance rate of the rule.
+# the noise, conflicts resolved best fit first — judged on random scenes by recall, GOSPA, SIAP
+# and the analytic chance rate of the rule.
 #
 # ## Learning objectives
 #
 # After this notebook you can
 #
-# 1. compute the Hough parameters (ρ, θ, v, s) of a pair of detections and explain how noise
-#    spreads one object's votes over cells (and why the origin of ρ matters);
-# 2. run the paper's voting procedure and the logic *n/m* rule frame by frame and read their logs;
-# 3. replace cell counting by a χ² test at the measurement noise and derive the **chance rate**
-#    of a 3-of-4 rule from the clutter density and the test's gate areas;
-# 4. judge an initiator by recall *and* false tracks against that chance rate, on scenes it was
-#    not tuned to;
-# 5. say when the angle constraint of the logic rule can act at all.
+# 1. compute the Hough parameters (ρ, θ, v, s) of a pair and explain how noise spreads one
+#    object's votes over cells;
+# 2. run the paper's voting and the logic *n/m* rule frame by frame and read their logs;
+# 3. replace cell counting by a χ² test at the noise and derive the **chance rate** of a 3-of-4
+#    rule;
+# 4. judge an initiator by recall, false tracks, GOSPA and SIAP on scenes it was not tuned to;
+# 5. say when the angle constraint of the logic rule can act.
 #
 # **Prerequisites.** Least-squares straight-line fits; the χ² distribution; uniform (Poisson)
 # clutter. Notebook 03 treats the hypothesis-testing initiator of the same collection; it is
@@ -53,9 +51,11 @@
 # %%
 import json
 
+from eotrack.notebook import lesson_header
 from eotrack.repro import papers_repro_dir
 from IPython.display import Markdown, display
 
+lesson_header("04")
 _card = json.loads((papers_repro_dir() / "track_init_hough" / "scorecard.json").read_text())
 display(Markdown(f"**{_card['summary']}** — " + "; ".join(
     f"`{c['claim']}`: {c['status']}" for c in _card["claims"])))
@@ -149,15 +149,13 @@ print(f"ρ = {rho:.3f} px, θ = {math.degrees(theta):.3f}°, v = {v:.3f} px/s, s
 # %% [markdown]
 # ### 4.2 The velocity gate
 #
-# The gate's formula is lost in our source (the digest numbers it (7); the paper's step list
-# cites (7) and (8) for the update of P and Q, so the numbering of the lost equations is
-# uncertain — see Errata); its sense is clear: only pairs with
+# The gate's formula is lost in our source (numbering uncertain, see Errata); its sense is
+# clear: only pairs with
 #
 # $$v_{min} \le \frac{|b - a|}{t_b - t_a} \le v_{max}$$
 #
-# vote. A static residual star never pairs with itself (v ≈ 0); pairs of *different* stars can
-# still pass. The library forms every gated pair of two frames in one broadcast
-# (`gated_pairs`). Check: the same pairs as a double loop.
+# vote. A static star never pairs with itself (v ≈ 0); pairs of *different* stars can pass.
+# Check: `gated_pairs` (one broadcast) gives the pairs of a double loop.
 
 # %%
 rng = np.random.default_rng(1)
@@ -222,12 +220,11 @@ pd.DataFrame(run.log)[["frame", "candidates", "pairs", "created", "tentative", "
 # their cells differ in *two* of (ρ, θ, v) they are not 6-neighbours (they are
 # 26-neighbours: ±1 in any combination) and the object is lost.
 #
-# How far apart can one object's pairs fall? A pair's direction error is
-# $\sigma_\theta \approx \sqrt2\,\sigma/(v\,\Delta t)$, and eq. (1) turns it into a ρ error of
-# up to $|r|\,\sigma_\theta$, where $r$ is the distance of the detections from the **origin of
-# ρ** — up to 724 px from the image corner, at most 362 px from the centre. The figure draws
-# every gated pair of the rebuilt 4-frame scene (left), then the pairs of track 2 over the
-# cell grid, with ρ from the corner (middle) and from the centre (right).
+# A pair's direction error $\sigma_\theta \approx \sqrt2\,\sigma/(v\,\Delta t)$ becomes a ρ
+# error of up to $|r|\,\sigma_\theta$, $r$ the distance from the **origin of ρ** (up to 724 px
+# from the corner, 362 px from the centre). The figure: every gated pair of the 4-frame scene
+# (left), then track 2's pairs over the cell grid, ρ from the corner (middle) and the centre
+# (right).
 
 # %%
 scene = TH.make_xu_scene(cfg)
@@ -253,8 +250,8 @@ fig = TH.plot_rho_theta_votes(scene, cfg, target=1)
 # * for three hits the residual is one contrast $w^\top x$ with $\sum w_i = 0$, $\sum w_i t_i = 0$,
 #   i.e. $w \propto (t_2 - t_3,\; t_3 - t_1,\; t_1 - t_2)$, and $\chi^2 = (w^\top x)^2 /
 #   (\lVert w\rVert^2\sigma^2)$. So, given two hits, the third must lie in a **disc** of radius
-#   $\sigma\sqrt{c\,\chi^2_2(1-\alpha)}$, $c = \lVert w\rVert^2 / w_{3}^2$, around the point the
-#   other two predict — the engine looks that disc up for every seed pair at once;
+#   $\sigma\sqrt{c\,\chi^2_2(1-\alpha)}$ around the point the other two predict, $c$ a function
+#   of the three times (Exercise 1) — the engine looks that disc up for every seed pair at once;
 # * the triplets a 3-of-4 track can end with at frame k are $(k-2, k-1, k)$, $(k-3, k-2, k)$ and
 #   $(k-3, k-1, k)$; each is searched from a seed pair two frames apart; the passing triplets are
 #   extended to the window's fourth frame when it fits, ranked (more hits, then smaller χ²) and
@@ -271,9 +268,7 @@ _, _, _, rss = cv_fit_batch(t3[None], x3[None, :, 0], x3[None, :, 1], np.ones((1
 assert math.isclose(chi_contrast, rss[0] / cfg.sigma_px**2, rel_tol=1e-9)
 thr = chi2.ppf(1 - pl_cfg.alpha, 2)
 assert chi_contrast <= thr  # the object's triplet passes
-display(Markdown(f"χ² = {chi_contrast:.2f} (threshold {thr:.2f} at α = {pl_cfg.alpha:g}); disc "
-                 f"factor of the middle hit c = {w @ w / w[1] ** 2:.3f}, of the first "
-                 f"{w @ w / w[0] ** 2:.3f}."))
+display(Markdown(f"χ² = {chi_contrast:.2f} (threshold {thr:.2f} at α = {pl_cfg.alpha:g})."))
 
 # %% [markdown]
 # One trial by hand with the verified initiator on the rebuilt scene (its per-frame log is
@@ -283,7 +278,8 @@ display(Markdown(f"χ² = {chi_contrast:.2f} (threshold {thr:.2f} at α = {pl_cf
 # %%
 ours_mh = ModifiedHoughInitiator(sigma_px=cfg.sigma_px)
 run = ours_mh.run(scene.frames, log=True)
-TH.score_tracks(run.tracks, scene)["confirm_frame"], pd.DataFrame(run.log)
+print("object → confirmation frame index:", TH.score_tracks(run.tracks, scene)["confirm_frame"])
+pd.DataFrame(run.log)
 
 # %% [markdown]
 # ### 4.6 The chance rate of the 3-of-4 rule
@@ -299,10 +295,15 @@ TH.score_tracks(run.tracks, scene)["confirm_frame"], pd.DataFrame(run.log)
 #
 # with $D(T)$ the probability that two uniform points of the square are between $v_{min}T$ and
 # $v_{max}T$ apart (closed form, `distance_cdf_square`). Summing $N_{f_1}N_{f_2}N_{f_3}\,P_3$
-# over the triplet shapes of every frame gives the expected number of chance tracks. Two
-# corrections make it exact in expectation: a residual star cannot pair with itself
-# (inclusion–exclusion over shared stars), and a confirmed chance track uses up its three
-# detections (**depletion**, carried frame by frame). Check $P_3$ against brute force:
+# over the triplet shapes of every frame (`triplet_shapes`) gives the expected number of
+# passing triples, an upper bound. `chi2_chance_tracks` applies three corrections: a residual
+# star cannot pair with itself (inclusion–exclusion over shared stars); passing triples of one
+# frame that share a detection are confirmed once (**conflicts**: a detection of frame f lies in
+# $\mu_f = E_f/N_f$ passing triples, so $\sum_f E_f^2/2N_f$ fewer tracks); and a confirmed
+# chance track uses up its detections (**depletion**, frame by frame, mean-field). An earlier
+# version without the conflict term claimed to be "exact in expectation"; the clutter-only check
+# of §5 measured 0.87–0.93 of it (3.3 s.e. low at 50 per frame). With it, the check below is
+# re-run in §5. Check $P_3$ against brute force:
 
 # %%
 rng = np.random.default_rng(0)
@@ -321,10 +322,9 @@ display(Markdown(f"$P_3$: formula {p_formula:.3g}, brute force {passed.mean():.3
 # %% [markdown]
 # ### 4.7 The logic n/m rule and the angle constraint
 #
-# The sliding-window logic: every candidate opens a *head*; a head is paired with every candidate
-# of a later frame of its window inside the velocity gate; a tentative track takes the nearest
-# candidate inside a circle of radius $r$ around its constant-velocity prediction; it is
-# confirmed with n detections in m frames. The **angle-constrained** variant [3] also rejects a
+# The sliding-window logic: every candidate opens a *head*, paired with every gated candidate of
+# a later frame of its window; a tentative track takes the nearest candidate within $r$ of its
+# constant-velocity prediction and is confirmed with n detections in m frames. The **angle-constrained** variant [3] also rejects a
 # point whose angle at the middle of the last three points is ≤ 90° ("V" shapes). With
 # $r$ = 10 px and $v_{min}$ = 10 px/s the prediction lies at least 10 px ahead of the last point,
 # so every point of the gate makes an angle > 90° there: the constraint can only act when
@@ -451,7 +451,8 @@ red.rename(columns={"exact": "fraction exact", "false": "mean false tracks"})
 # criterion for the angle constraint is *fewer* false tracks at equal initiation probability.
 
 # %%
-comp = TH.run_comparison(comp_cfg, n_trials=N["comparison"], runner=runner, xu=cfg)
+comp, comp_trials = TH.run_comparison(comp_cfg, n_trials=N["comparison"], runner=runner,
+                                      xu=cfg, per_trial=True)
 fig, axes = plt.subplots(2, 2, figsize=(11, 7.5))
 for i, sweep in enumerate(("clutter", "p_detect")):
     for j, metric in enumerate(("p_correct", "false_per_frame")):
@@ -479,11 +480,17 @@ angle.pivot_table(index=["clutter", "gate_px"], columns="method",
 # before the run): 2–8 objects at 5–150 px/s in random directions, each detection missed with
 # probability 0.1, 10–40 static residual stars, uniform clutter of 5–50 per frame, σ = 0.3 px;
 # every initiator gets the gate [3, 240] px/s. First the chance rate of §4.6 against clutter-only
-# scenes:
+# scenes; the planted criterion multiplies the formula by what it is worth, the pooled
+# measured/analytic ratio:
 
 # %%
 chance = TH.chance_rate_check(pl_cfg, n_trials=N["chance"], runner=runner)
 ax = TH.plot_chance_check(chance)
+k_chance = TH.calibrated_chance_factor(chance)
+display(Markdown("measured/analytic: " + ", ".join(
+    f"{c:g}/frame {r:.3f} ± {e:.3f}" for c, r, e in
+    zip(chance["clutter"], chance["ratio"], chance["ratio s.e."]))
+    + f"; pooled **{k_chance:.3f}**."))
 chance
 
 # %%
@@ -495,20 +502,73 @@ fig = TH.plot_planted_summary(summary, recall_min=p_pl["recall_min"],
 summary
 
 # %%
-ours_row = summary.set_index("method").loc["modified Hough 3/4 (ours)"]
-assert ours_row["recall"] > summary.set_index("method").loc["logic 3/4", "recall"]
+s_idx = summary.set_index("method")
+lit_row, ours_row = s_idx.loc["modified Hough 3/4 (paper)"], s_idx.loc["modified Hough 3/4 (ours)"]
+assert ours_row["recall"] > s_idx.loc["logic 3/4", "recall"]
 display(Markdown(
-    f"Our verified initiator: recall **{ours_row['recall']:.3f}** (criterion ≥ "
-    f"{p_pl['recall_min']}), **{ours_row['false per scene']:.2f}** false tracks per scene against "
-    f"a chance rate of {ours_row['chance per scene']:.2f} (ratio {ours_row['false / chance']:.2f},"
-    f" criterion ≤ {p_pl['false_over_chance_max']})."))
+    f"The paper's procedure: recall **{lit_row['recall']:.3f}** (criterion ≥ "
+    f"{p_pl['recall_min']}), {lit_row['false per scene'] / (k_chance * lit_row['chance per scene']):.2f}"
+    f" × the calibrated chance rate (criterion ≤ {p_pl['false_over_chance_max']}) — this sets the "
+    f"status. Our verified variant, beside it: recall {ours_row['recall']:.3f}, "
+    f"{ours_row['false per scene'] / (k_chance * ours_row['chance per scene']):.2f} × chance."))
+
+# %% [markdown]
+# The same runs scored by the tracking community's measures [6, 10, 11]: GOSPA (cut-off
+# $c$ = 10 px, $p$ = 1, per frame from frame 3 on; its *missed* and *false* parts are $c/2$ per
+# missed object or false track, *localisation* the summed distances) and SIAP completeness
+# (share of object-frames covered by a track) and spuriousness (share of track-frames on no
+# object), computed by Stone Soup (`eotrack.tracking.metrics`, cross-checked by hand in its
+# tests).
+
+# %%
+metrics = TH.summarise_metrics(planted_df)
+assert metrics.loc["modified Hough 3/4 (ours)", "gospa"] == metrics["gospa"].min()
+metrics.round(3)
+
+# %% [markdown]
+# **Why logic 2/3 and the classic Hough lose almost every object.** Not a bug: the rules.
+# The same objects with the clutter, the residual stars or both removed (paired scenes); *mixing*
+# counts false tracks holding an object's detection:
+
+# %%
+abl = TH.recall_ablation(pl_cfg, n_scenes=max(10, N["planted"] // 4), runner=runner)
+abl_r = abl.pivot(index="method", columns="condition", values="recall")
+abl_m = abl.pivot(index="method", columns="condition", values="mixing per scene")
+assert abl_r.loc["logic 2/3", "objects only"] > abl_r.loc["logic 2/3", "as planted"]
+display(abl_r.round(3), abl_m.round(2))
+gate_share = float(TH.distance_cdf_square(240.0, 512) - TH.distance_cdf_square(3.0, 512))
+rng_h = np.random.default_rng(3)
+chance_peak = []  # highest classic-Hough cell of the non-object detections of 4 frames
+for _ in range(8):
+    sc_h = TH.planted_scene(rng_h, pl_cfg)
+    pts_h = np.concatenate([xy[lab < 0] for (_, xy), lab in zip(sc_h.frames[:4], sc_h.labels[:4])])
+    chance_peak.append(int(hough_accumulator(pts_h, 5.0, 1.0, rho_max=730.0).votes.max()))
+assert min(chance_peak) > 4
+display(Markdown(
+    f"A 2/3 track is confirmed by **any two** detections inside the velocity gate, which at "
+    f"[3, 240] px/s covers {100 * gate_share:.0f} % of the field: each object detection has "
+    f"about {gate_share * abl['detections per frame'].iloc[0]:.0f} gated partners per frame and "
+    "two points carry no consistency test, so the confirmed pair is seldom the object's own "
+    f"(recall {abl_r.loc['logic 2/3', 'as planted']:.2f} as planted, "
+    f"{abl_r.loc['logic 2/3', 'no clutter']:.2f} without clutter, "
+    f"{abl_r.loc['logic 2/3', 'objects only']:.2f} with objects only, where the other objects "
+    "are the wrong partners). The classic Hough's cell (5 px × 1°, no time or speed) "
+    "collects points of any order and speed; in clutter the highest cells are chance lines "
+    f"(the non-object detections of 4 frames alone fill cells with {min(chance_peak)}–"
+    f"{max(chance_peak)} votes, an object gives 4), confirmed first, and each takes the "
+    "detection closest to its line in every frame — often the object's "
+    f"(recall {abl_r.loc['classic Hough 3/4', 'as planted']:.2f} as planted, "
+    f"{abl_r.loc['classic Hough 3/4', 'objects only']:.2f} objects only). The 3/4 rules with "
+    "a prediction gate or a χ² test do not suffer this."))
 
 # %% [markdown]
 # ## 6 · Scorecard
 
 # %%
-rows = TH.evaluate(claims, cfg, t2[6][0], nominal, redraws, comp, angle, planted_df, chance)
-scorecard(rows)[["claim", "status", "paper", "ours", "note"]]
+rows = TH.evaluate(claims, cfg, t2[6][0], nominal, redraws, comp, angle, planted_df, chance,
+                  comp_trials=comp_trials, n_frames_comp=comp_cfg.n_frames,
+                  planted_metrics=metrics)
+scorecard(rows)[["claim", "kind", "status", "ours", "variant", "note"]]
 
 # %%
 # NBVAL_CHECK_OUTPUT
@@ -520,11 +580,10 @@ if not QUICK:  # the full configuration is make repro's: the REPORT must say the
 # %% [markdown]
 # ## 7 · Explore
 #
-# The key trade-off of cell voting: how the paper's choices (6- or 26-neighbourhood, origin of
-# ρ) fare as clutter grows, against the verified initiator. Each setting is run on the same
-# seeded planted scenes (fewer than in section 5 — the title says how many); the left panel
-# aggregates recall and false tracks per scene against the chance rate, the right one shows
-# the first scene. All settings are computed once below, so a change only redraws.
+# The paper's choices (6- or 26-neighbourhood, origin of ρ) as clutter grows, against the
+# verified initiator, on the same seeded planted scenes (the title says how many). Left: recall
+# and false tracks against the chance rate; right: the first scene. All settings are computed
+# once below; a change only redraws.
 
 # %%
 for lam in TH.EXPLORE_CLUTTER:
@@ -549,49 +608,57 @@ explore = panel(draw, tight=False,
 # %% [markdown]
 # ## 8 · Errata and deviations
 #
-# * **Tables 1 and 2 are lost** in the source text. Table 1 is ours (section 5), chosen to
-#   satisfy the text; we changed it twice after seeing results and say so: our first tracks 4 and
-#   5 were 1.3 px apart in frame 2 (closer than the noise allows to separate), and track 3 passed
-#   3 px from a catalogue star. Table 2's columns are reproduced in form; its numbers cannot be
-#   compared. The residual stars are real Gaia DR3 positions; the fraction left by star removal
-#   is our assumption.
-# * **The vote count P, eq. (8)**: read as "+1 per current frame" it contradicts the paper's
-#   confirmation frames; we count the distinct frames whose detections are in Q(t) (§4.3).
-# * **Lost formulas**: the velocity gate, the pair's θ, the parameter ranges, the P/Q updates and
-#   the neighbour condition lost their formulas (§4.3). Their numbering is uncertain: the digest
-#   calls the gate (7), while the paper's step list updates P and Q "by (7) and (8)" and expires
-#   old votes "by (9)". We use $v_{min} \le |\Delta xy|/\Delta t \le v_{max}$ and require the
-#   least-squares line of Q(t) within 1.5 cells of t′'s centre.
-# * **Direction s**: "+ = increasing x and y" is ambiguous when one decreases; + is along
-#   $(\sin\theta, -\cos\theta)$.
-# * **Origin of ρ** is not stated; the literal procedure uses the image corner (§4.4 shows what
-#   the centre changes; the Explore toggle measures it).
-# * **Constant-velocity check** (deviation of the literal procedure): a confirmed cell must give
-#   one detection per frame forming a constant-velocity track of the cell (within δρ/2);
-#   otherwise pairs of static residual stars make false tracks the paper does not report.
-# * **6-neighbourhood**: with it an object seen in three frames is lost whenever its two pair
-#   cells differ in two of (ρ, θ, v) — track 2 of our nominal scene. Hence the *partial* status
-#   of `xu_table2` and `xu_fig3`: the paper's result holds with the 26-neighbourhood or with the
-#   verified initiator. The literal flag (`literal=True`) reproduces our Table 2 exactly as
-#   before the verified engine was added (a test pins it).
-# * **Hand-off**: a confirmed track claims its later detections (nearest within 5 px of its
-#   constant-velocity prediction) — the paper's "hand to tracking"; all initiators use it.
-# * **Logic details** the summaries leave open: heads stay open for their window, the gate is a
-#   10 px circle, conflicts go to the track with more points; with that gate the angle
-#   constraint cannot act (§4.7), so the method comparison's claim (b) fails as the digest
-#   states it.
+# * **Tables 1 and 2 are lost** in the source. Table 1 is ours, changed twice after seeing
+#   results (tracks 4 and 5 first 1.3 px apart in frame 2; track 3 first 3 px from a catalogue
+#   star). Table 2's columns are reproduced in form only. Residual stars are Gaia DR3 positions;
+#   the fraction left by star removal is our assumption.
+# * **Eq. (8)** read as "+1 per current frame" contradicts the paper's confirmation frames; we
+#   count the distinct frames whose detections are in Q(t) (§4.3).
+# * **Lost formulas** (gate, θ of a pair, ranges, P/Q updates, neighbour test) are rebuilt in
+#   §4.3; their numbering is uncertain (the digest calls the gate (7); the step list updates P
+#   and Q "by (7) and (8)" and expires votes "by (9)").
+# * **Direction s**: "+ = increasing x and y" is ambiguous; + is along $(\sin\theta, -\cos\theta)$.
+#   **Origin of ρ** is not stated; we use the image corner (§4.4, Explore).
+# * **Constant-velocity check** (our addition to the literal procedure): a confirmed cell must
+#   give one detection per frame on a constant-velocity track of the cell, else static residual
+#   stars make false tracks the paper does not report.
+# * **6-neighbourhood**: an object seen in three frames is lost when its two pair cells differ
+#   in two of (ρ, θ, v) — track 2 of our nominal scene. The status of `xu_table2` and `xu_fig3`
+#   is the paper's method's: *not reproduced* (right in about half of the redraws). The
+#   26-neighbourhood and the verified initiator recover the scene (the scorecard's *variant*
+#   column), which cannot make the paper's claim reproduced. `literal=True` reproduces our
+#   Table 2 exactly as before the verified engine (a test pins it).
+# * **Hand-off**: a confirmed track claims its later detections within 5 px of its prediction.
+# * **Logic details** left open: heads stay open for their window, a 10 px gate, conflicts to
+#   the track with more points; with that gate the angle constraint cannot act (§4.7), so claim
+#   (b) of the method comparison neither holds nor is reversed.
 
 # %% [markdown]
 # ## 9 · Beyond the paper
 #
 # ### The logic rule's analytic false-track rate beside the measured one
 #
-# Clutter only, 20 frames per run: for 3/4 the formula of §4.7 follows the measurement while
-# false tracks are rare; for 2/3 it is a gross upper bound (detections are used up).
+# Clutter only, 20 frames per run; the measured rate over the formula of §4.7, with the
+# prediction-inside factor $q$ and without it:
 
 # %%
 lf = TH.logic_false_track_table(comp_cfg, n_trials=N["aux"], runner=runner, xu=cfg)
 ax = TH.plot_logic_false_tracks(lf)
+lf = lf.assign(**{"measured / analytic": lf["measured"] / lf["analytic"],
+                  "measured / edges ignored": lf["measured"] / lf["analytic, edges ignored"]})
+l34 = lf[lf["method"] == "logic 3/4"]
+ratio_ok = l34["measured / analytic"].between(0.8, 1.25)
+display(Markdown(
+    "Logic 3/4, measured / formula: " + ", ".join(
+        f"{c:g}/frame {r:.2f} ({n} tracks)" for c, r, n in
+        zip(l34["clutter"], l34["measured / analytic"], l34["false"]))
+    + "; without the edge factor: " + ", ".join(
+        f"{r:.2f}" for r in l34["measured / edges ignored"])
+    + f". The formula is within 25 % of the measurement at {int(ratio_ok.sum())} of "
+    f"{len(l34)} densities: it does not follow it. Where the edges-ignored version agrees, the "
+    "counts are a few tracks (Poisson errors of tens of %), and at higher density it is high "
+    "too. We have not found the missing terms; the formula is shown, not used. For 2/3 it is a "
+    "gross upper bound (detections are used up)."))
 lf
 
 # %% [markdown]
@@ -599,6 +666,8 @@ lf
 #
 # The same seeded scenes given to Stone Soup [6]: a constant-velocity Kalman model, a wide
 # velocity prior, a Mahalanobis gate, global nearest neighbour, confirmation at 3 updates.
+# Without clutter it finds every object; with 10 clutter points per frame its P_correct falls
+# (table below). The cell after it looks at the lost objects.
 
 # %%
 try:
@@ -606,6 +675,26 @@ try:
 except ImportError as exc:  # optional baseline
     stone = pd.DataFrame({"note": [f"Stone Soup unavailable: {exc}"]})
 stone
+
+# %%
+rng_ss = np.random.default_rng(3)
+ss_lost = ss_elig = ss_mixed = ss_false = 0
+for _ in range(6):
+    sc_ss = TH.comparison_scene(rng_ss, comp_cfg, 10.0, comp_cfg.p_detect_nominal)
+    tr_ss = TH.StoneSoupInitiator().initiate(sc_ss.frames)
+    r_ss = TH.score_tracks(tr_ss, sc_ss)
+    ss_elig += r_ss["eligible"]
+    ss_lost += r_ss["eligible"] - r_ss["correct"]
+    ss_false += r_ss["false"]
+    ss_mixed += sum(1 for t in tr_ss if len({int(sc_ss.labels[f][d]) for f, d in t.hits
+                                             if f <= t.confirmed_at}) > 1)
+display(Markdown(
+    f"Stone Soup, 6 scenes at 10 clutter points per frame: {ss_lost} of {ss_elig} objects lost, "
+    f"{ss_false} false tracks, {ss_mixed} confirmed tracks mixing sources. So the losses are "
+    "not detections taken by false tracks: on the lost objects the initiator never completes "
+    "its three updates. A likely cause (not traced here) is its start from one detection with "
+    "the wide velocity prior: the first gate holds every point the speed allows, so clutter "
+    "competes for each update under global nearest neighbour. Without clutter it loses none."))
 
 # %% [markdown]
 # ### Speed
@@ -642,19 +731,15 @@ display(Markdown(f"Verified initiator, 200 uniform candidates per frame: {steady
 # %% [markdown]
 # ## 10 · Key points
 #
-# * Over a few seconds a space object moves at constant velocity on the image: pairs of
-#   detections vote for a line, a speed and a direction, and the frame count of a vote cell is a
-#   3-of-4 rule.
-# * Cells quantise what noise spreads continuously: one object's pairs straddle cells, more so
-#   far from the origin of ρ; neighbourhood rules patch this partially.
-# * Testing the constant-velocity fit at the measurement noise (χ²) is the same 3-of-4 rule with
-#   the right tolerance; resolving conflicts best fit first keeps objects from losing
-#   detections to chance tracks.
-# * A 3-of-4 rule has an irreducible chance rate, ∝ λ³ σ² / A: compute it before judging an
-#   initiator's false tracks.
-# * Judge initiators on many random scenes, by recall *and* false tracks; one hand-picked scene
-#   says little.
-# * The angle constraint acts only when the prediction gate is wider than the motion per frame.
+# * Pairs of detections vote for a line, a speed and a direction; a cell's frame count is a
+#   3-of-4 rule. Cells quantise what noise spreads continuously, more so far from ρ's origin.
+# * A χ² test of the constant-velocity fit at the noise is the same rule with the right
+#   tolerance; best fit first keeps objects' detections from chance tracks.
+# * A 3-of-4 rule has a chance rate ∝ λ³σ²/A, less the triples that share a detection: compute
+#   it before judging false tracks.
+# * Two hits carry no test (2/3), and a line cell knows no time (classic Hough): both lose most
+#   objects in clutter.
+# * Judge initiators on many random scenes, by recall, false tracks, GOSPA and SIAP.
 
 # %% [markdown]
 # ## 11 · Exercises
@@ -665,8 +750,8 @@ display(Markdown(f"Verified initiator, 200 uniform candidates per frame: {steady
 #
 # **Exercise 1 (derivation).** Three hits at $t_1 < t_2 < t_3$ pass the χ² test when the hit you
 # look up lies in a disc of area $\pi\chi^2_2(1-\alpha)\sigma^2 c$ around the point predicted
-# from the other two (§4.5). Derive $c$ and write `disc_factor(t1, t2, t3, which)` returning it
-# for the hit `which` ∈ {0, 1, 2}.
+# from the other two (§4.5). §4.6 states $c$ for the middle hit only; derive it for any hit and
+# write `disc_factor(t1, t2, t3, which)` returning it for the hit `which` ∈ {0, 1, 2}.
 
 # %%
 def disc_factor(t1, t2, t3, which):
@@ -699,13 +784,14 @@ if answer is not None:
     check("track_init_hough.3", answer)
 
 # %% [markdown]
-# **Exercise 4 (critique).** With the paper's 6-neighbourhood the nominal scene loses track 2.
-# Why? (a) its two pair cells differ in two of (ρ, θ, v); (b) its speed is outside the gate;
-# (c) missing frame 3 breaks the 3/4 rule; (d) a residual star took one of its detections.
-# Answer with the letter.
+# **Exercise 4 (critique).** The paper's 6-neighbourhood finds track 5 of the nominal scene
+# (seen in frames 2, 3, 4) but loses track 2. Compute the cells $(\lfloor\rho/\delta\rho\rfloor,
+# \lfloor\theta/\delta\theta\rfloor, \lfloor v/\delta v\rfloor)$ of track 5's pairs 2→3 and
+# 3→4 (label 4 in `scene.labels`, ρ from the image corner) and give the number of indices in
+# which they differ.
 
 # %%
-answer = None  # "a", "b", "c" or "d"
+answer = None  # your answer here (a number)
 if answer is not None:
     check("track_init_hough.4", answer)
 
@@ -741,3 +827,14 @@ if answer is not None:
 #    survey properties. *Astron. Astrophys.* 674:A1, 2023. doi:10.1051/0004-6361/202243940
 # 8. Carlson B.D., Evans E.D., Wilson S.L. Search radar detection and track with the Hough
 #    transform. *IEEE Trans. Aerosp. Electron. Syst.* 30(1):102–108, 1994. doi:10.1109/7.250410
+# 9. Lo T., Leung H., Bridgewater A.W. et al. (modified Hough track initiation), *AGARD
+#    Conference Proceedings* 539:25.1, 1994 — ref. [11] of Xu & Wang, the source of their method.
+# 10. Rahmathullah A.S., García-Fernández Á.F., Svensson L. Generalized optimal sub-pattern
+#    assignment metric. *Proc. FUSION* 2017. doi:10.23919/ICIF.2017.8009645
+# 11. Votruba P., Nisley R., Rothrock R., Zombro B. *Single Integrated Air Picture (SIAP)
+#    Metrics Implementation.* SIAP SE Task Force TR 2001-003, 2001.
+
+# %%
+from eotrack.notebook import lesson_footer
+
+lesson_footer("04")
