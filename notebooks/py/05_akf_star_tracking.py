@@ -564,17 +564,18 @@ pd.concat({"continuity": res.continuity(), "median error (px)": res.median_error
 # %% [markdown]
 # ### Fig. 6 — mean tracking error over the frames
 #
-# Where the global threshold loses the star, Baseline and BEAK-ST-GT produce the same curve:
-# Baseline is drawn wide and dashed underneath, BEAK-ST-GT dotted on top.
+# One panel per scenario, as the claim is decided. Where the global threshold loses the star,
+# Baseline and BEAK-ST-GT produce the same curve: Baseline is drawn wide and dashed
+# underneath, BEAK-ST-GT dotted on top.
 
 # %%
-fig = A.plot_error_curves(res)
+fig = A.plot_curves_by_scenario(res, "error")
 
 # %% [markdown]
 # ### Fig. 7 — success rate over the frames
 
 # %%
-fig = A.plot_success_curves(res)
+fig = A.plot_curves_by_scenario(res, "success")
 
 # %% [markdown]
 # ## Scorecard
