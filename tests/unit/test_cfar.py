@@ -84,3 +84,57 @@ def test_held_out_pf_outside_range_for_rough_clutter():
     """Clutter finer than a tile (8 px < 16 px) or 6x the noise: the rate is too high."""
     assert _measured_pf((200, 150), 30, 8, 0.03) / 0.03 > 1.1
     assert _measured_pf((200, 150), 60, 24, 0.003) / 0.003 > 1.5
+
+
+# ------------------------------------------------ held-out: outside the Gaussian noise model
+def test_held_out_poisson_dark_sky_warns_and_poisson_model_is_conservative():
+    """Photon-limited counts (mean 0.5): MAD = 0 is detected, the Gaussian rate is off, and
+    ``noise="poisson"`` keeps the rate at or below p_f."""
+    from eotrack.imaging.cfar import CfarWarning
+
+    img = np.random.default_rng(11).poisson(0.5, (128, 128)).astype(float)
+    with pytest.warns(CfarWarning, match="MAD is 0"):
+        g = cfar_segment(img, 0.03)
+    assert g.mean() / 0.03 > 2.0  # documented: the discrete levels cannot give 0.03
+    for p_f in (0.03, 0.003):
+        rate = cfar_segment(img, p_f, noise="poisson").mean()
+        assert 0.2 * p_f < rate <= 1.1 * p_f  # conservative, not degenerate
+
+
+def test_held_out_poisson_bright_sky_rate_close_and_target_found():
+    rng = np.random.default_rng(12)
+    img = rng.poisson(20.0, (128, 128)).astype(float)
+    img[60:63, 60:63] += 40
+    res = cfar_segment(img, 0.01, noise="poisson", full=True)
+    assert res.binary[60:63, 60:63].all()
+    core = res.binary.copy()
+    core[55:68, 55:68] = 0
+    assert 0.4 * 0.01 < core.mean() <= 1.1 * 0.01
+    assert np.median(res.background) == pytest.approx(20.0, rel=0.05)
+
+
+def test_quantised_gaussian_warns():
+    from eotrack.imaging.cfar import CfarWarning
+
+    img = np.round(0.4 * np.random.default_rng(13).standard_normal((64, 64)))
+    with pytest.warns(CfarWarning):
+        cfar_threshold(img, 0.03)
+
+
+def test_continuous_gaussian_does_not_warn():
+    import warnings
+
+    img = 100 + 5 * np.random.default_rng(14).standard_normal((64, 64))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        cfar_segment(img, 0.03)
+        cfar_segment(np.round(img), 0.03)  # integer DN, but 5 DN of noise: no warning
+
+
+def test_poisson_bad_input():
+    with pytest.raises(ValueError, match="noise"):
+        cfar_segment(np.zeros((16, 16)), 0.03, noise="laplace")
+    with pytest.raises(ValueError, match="counts"):
+        cfar_segment(np.full((16, 16), 0.5), 0.03, noise="poisson")
+    with pytest.raises(ValueError, match="counts"):
+        cfar_threshold(np.full((16, 16), -1.0), 0.03, noise="poisson")
