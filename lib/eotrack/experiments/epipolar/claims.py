@@ -16,7 +16,7 @@ from eotrack.geometry.triangulation import combine_estimates
 from eotrack.montecarlo import binomial_interval
 from eotrack.repro import ClaimResult, Reproduction, Status, evaluator, load_claims
 
-from .scenario import EPOCH_UTC, PAIRS, SLUG, TITLE, ErrorConfig, Scenario
+from .scenario import EPOCH_UTC, PAIR_LABELS, PAIRS, SLUG, TITLE, ErrorConfig, Scenario
 from .trials import (
     DisplayedDraw,
     MonteCarlo,
@@ -154,13 +154,21 @@ def fig5_summary(sw: SweepResult, boot: dict | None = None) -> pd.DataFrame:
          "ours interval": ci("acc_ci", 100) + (" %" if boot else ""),
          "ours − paper": round(acc - p5["accuracy_at_best"], 4),
          "at L (px)": float(sw.thresholds[i])},
+        {"quantity": f"correct of associated (paper's 1 − 误判率), best L in {lo:g}–{hi:g} px",
+         "paper": p5["accuracy_at_best"], "ours": "" if boot is None else round(boot["prec"], 4),
+         "ours interval": ci("prec_ci", 100) + (" %" if boot else ""),
+         "ours − paper": "" if boot is None else round(boot["prec"] - p5["accuracy_at_best"], 4),
+         "at L (px)": np.nan if boot is None else boot["prec_L"]},
         {"quantity": "L of smallest total error (px)", "paper": f"{lo:g}–{hi:g}",
          "ours": sw.best_threshold, "ours interval": ci("best_L_ci", 1),
          "ours − paper": "", "at L (px)": sw.best_threshold},
         {"quantity": "groups of maps (draws)", "paper": p5["n_groups"], "ours": "",
          "ours interval": "", "ours − paper": "", "at L (px)": np.nan},
-        {"quantity": "true pairs (paper: associated pairs)", "paper": p5["n_associated_pairs"],
-         "ours": sw.n_true, "ours interval": "", "ours − paper": "", "at L (px)": np.nan},
+        {"quantity": "associated pairs at the best in-band L", "paper": p5["n_associated_pairs"],
+         "ours": int(sw.n_associated[i]), "ours interval": "", "ours − paper": "",
+         "at L (px)": float(sw.thresholds[i])},
+        {"quantity": "true pairs", "paper": "", "ours": sw.n_true, "ours interval": "",
+         "ours − paper": "", "at L (px)": np.nan},
     ])
 
 
@@ -266,16 +274,16 @@ def status_fig3(m: dict) -> Status:
 
 
 @evaluator("epipolar.fig4", cases=[
-    (dict(share_ci=(0.6, 0.8), shared_23=0, n_false=40, removed_share=0.7), R_),
-    (dict(share_ci=(0.02, 0.2), shared_23=0, n_false=40, removed_share=0.7), P_),
-    (dict(share_ci=(0.0, 0.05), shared_23=0, n_false=40, removed_share=0.7), N_),
-    (dict(share_ci=(0.6, 0.8), shared_23=0, n_false=40, removed_share=0.3), N_),
-    (dict(share_ci=(0.6, 0.8), shared_23=0, n_false=0, removed_share=0.0), N_),
-    (dict(share_ci=(0.6, 0.8), shared_23=2, n_false=40, removed_share=0.7), N_)])
+    (dict(share_ci=(0.6, 0.8), shared_23=0, n_false=40), R_),
+    (dict(share_ci=(0.02, 0.2), shared_23=0, n_false=40), P_),
+    (dict(share_ci=(0.0, 0.05), shared_23=0, n_false=40), N_),
+    (dict(share_ci=(0.6, 0.8), shared_23=0, n_false=0), N_),
+    (dict(share_ci=(0.6, 0.8), shared_23=2, n_false=40), N_)])
 def status_fig4(m: dict) -> Status:
     """Share of draws with every true pair associated (95 % Wilson interval) and the pair
-    structure of Fig. 4 (see the claim's criterion)."""
-    structure = m["shared_23"] == 0 and m["n_false"] > 0 and m["removed_share"] >= 0.5
+    structure of Fig. 4 (see the claim's criterion). Our three-view check (a variant) is
+    reported, not scored."""
+    structure = m["shared_23"] == 0 and m["n_false"] > 0
     lo, hi = m["share_ci"]
     if structure and lo >= 0.5:
         return R_
@@ -285,35 +293,39 @@ def status_fig4(m: dict) -> Status:
 
 
 @evaluator("epipolar.table3", cases=[
-    (dict(displayed_recovered=9, n_objects=9, mean_recovered=6.0), R_),
-    (dict(displayed_recovered=8, n_objects=9, mean_recovered=7.5), P_),
-    (dict(displayed_recovered=6, n_objects=9, mean_recovered=5.9), N_)])
+    (dict(all_nine_ci=(0.55, 0.7), mean_recovered_ci=(8.4, 8.6), n_objects=9), R_),
+    (dict(all_nine_ci=(0.2, 0.3), mean_recovered_ci=(7.2, 7.6), n_objects=9), P_),
+    (dict(all_nine_ci=(0.2, 0.3), mean_recovered_ci=(6.8, 7.4), n_objects=9), N_),
+    (dict(all_nine_ci=(0.0, 0.02), mean_recovered_ci=(5.5, 6.0), n_objects=9), N_)])
 def status_table3(m: dict) -> Status:
-    """All objects recovered in the displayed draw; partial if ≥ 7 of 9 on average."""
-    if m["displayed_recovered"] == m["n_objects"]:
+    """Over the draws: all nine objects recovered in a majority of draws (95 % Wilson lower
+    end >= 0.5); partial if the 95 % interval of the mean number recovered lies at or above
+    7 of 9."""
+    if m["all_nine_ci"][0] >= 0.5:
         return R_
-    return P_ if m["mean_recovered"] >= 7 else N_
+    return P_ if m["mean_recovered_ci"][0] >= 7 else N_
 
 
 @evaluator("epipolar.table4", cases=[
-    (dict(diff_ci=[(0.5, 1.0)] * 5, noisy_means=[2.0] * 5), R_),
-    (dict(diff_ci=[(0.5, 1.0)] * 5, noisy_means=[2.0, 2.0, 2.0, 2.0, 12.0]), P_),
-    (dict(diff_ci=[(0.5, 1.0)] * 3 + [(-0.2, 0.4)] * 2, noisy_means=[2.0] * 5), P_),
-    (dict(diff_ci=[(0.5, 1.0)] * 4 + [(-1.0, -0.2)], noisy_means=[2.0] * 5), N_),
-    (dict(diff_ci=[(-0.3, 0.4)] * 5, noisy_means=[2.0] * 5), N_),
-    (dict(diff_ci=[(-1.0, -0.2)] * 3 + [(0.5, 1.0)] * 2, noisy_means=[2.0] * 5), CONTRADICTED)])
+    (dict(diff_ci=[(0.5, 1.0)] * 5, level_ratio=[1.2, 0.8, 1.5, 0.7]), R_),
+    (dict(diff_ci=[(0.5, 1.0)] * 5, level_ratio=[1.2, 0.8, 1.5, 0.29]), P_),
+    (dict(diff_ci=[(0.5, 1.0)] * 3 + [(-0.2, 0.4)] * 2, level_ratio=[1.0] * 4), P_),
+    (dict(diff_ci=[(0.5, 1.0)] * 4 + [(-1.0, -0.2)], level_ratio=[1.0] * 4), N_),
+    (dict(diff_ci=[(-0.3, 0.4)] * 5, level_ratio=[1.0] * 4), N_),
+    (dict(diff_ci=[(-1.0, -0.2)] * 3 + [(0.5, 1.0)] * 2, level_ratio=[1.0] * 4), CONTRADICTED)])
 def status_table4(m: dict) -> Status:
     """Paired (noisy − noise-free) mean-distance intervals, one per map pair with true pairs
-    (family-wise 95 %): see the claim's criterion."""
+    (family-wise 95 %), and our noisy level over the paper's per pair (``level_ratio``, the
+    pairs where the paper prints a noisy value): see the claim's criterion."""
     ci = np.asarray(m["diff_ci"], float)
     above = int(np.sum(ci[:, 0] > 0))
     below = int(np.sum(ci[:, 1] < 0))
     n = len(ci)
-    noisy = np.asarray(m["noisy_means"], float)
-    in_range = bool(np.all((noisy > 1) & (noisy < 10)))
+    ratio = np.asarray(m["level_ratio"], float)
+    level_ok = bool(np.all((ratio >= 0.5) & (ratio <= 2.0)))
     if below >= n // 2 + 1:
         return CONTRADICTED
-    if above == n and in_range:
+    if above == n and level_ok:
         return R_
     if above >= n // 2 + 1 and below == 0:
         return P_
@@ -321,17 +333,25 @@ def status_table4(m: dict) -> Status:
 
 
 @evaluator("epipolar.fig5", cases=[
-    (dict(best_L_ci=(8.5, 11.0), acc_ci=(0.86, 0.9), band=(8, 12), acc_min=0.85), R_),
-    (dict(best_L_ci=(4.0, 5.0), acc_ci=(0.86, 0.9), band=(8, 12), acc_min=0.85), P_),
-    (dict(best_L_ci=(9.0, 10.0), acc_ci=(0.80, 0.84), band=(8, 12), acc_min=0.85), P_),
-    (dict(best_L_ci=(7.0, 10.0), acc_ci=(0.84, 0.88), band=(8, 12), acc_min=0.85), N_),
-    (dict(best_L_ci=(4.0, 5.0), acc_ci=(0.70, 0.75), band=(8, 12), acc_min=0.85), N_)])
+    (dict(best_L_ci=(8.5, 11.0), acc_ci=(0.86, 0.9), prec_ci=(0.86, 0.9), band=(8, 12),
+          acc_min=0.85), R_),
+    (dict(best_L_ci=(4.0, 5.0), acc_ci=(0.86, 0.9), prec_ci=(0.86, 0.9), band=(8, 12),
+          acc_min=0.85), P_),
+    (dict(best_L_ci=(9.0, 10.0), acc_ci=(0.80, 0.84), prec_ci=(0.86, 0.9), band=(8, 12),
+          acc_min=0.85), P_),
+    (dict(best_L_ci=(9.0, 10.0), acc_ci=(0.86, 0.9), prec_ci=(0.70, 0.75), band=(8, 12),
+          acc_min=0.85), P_),
+    (dict(best_L_ci=(7.0, 10.0), acc_ci=(0.86, 0.88), prec_ci=(0.70, 0.75), band=(8, 12),
+          acc_min=0.85), N_),
+    (dict(best_L_ci=(4.0, 5.0), acc_ci=(0.70, 0.75), prec_ci=(0.86, 0.9), band=(8, 12),
+          acc_min=0.85), N_)])
 def status_fig5(m: dict) -> Status:
-    """Best threshold's and best in-band correct rate's bootstrap intervals against the
-    paper's 8–12 px and 85 %."""
+    """Best threshold's bootstrap interval against the paper's 8–12 px, and the best in-band
+    correct rate against 85 % under BOTH readings of "correct" (of the true pairs, ``acc_ci``;
+    of the associated pairs, ``prec_ci`` — the paper's 误判率 reading)."""
     lo, hi = m["band"]
     best_in = m["best_L_ci"][0] >= lo and m["best_L_ci"][1] <= hi
-    acc_ok = m["acc_ci"][0] >= m["acc_min"]
+    acc_ok = m["acc_ci"][0] >= m["acc_min"] and m["prec_ci"][0] >= m["acc_min"]
     if best_in and acc_ok:
         return R_
     return P_ if (best_in or acc_ok) else N_
@@ -357,11 +377,17 @@ def status_table5(m: dict) -> Status:
 
 
 @evaluator("epipolar.fig8", cases=[
-    (dict(displayed_err_km=[10.0, 20.0], separation_km=354.0), R_),
-    (dict(displayed_err_km=[172.0, 122.0], separation_km=354.0), N_)])
+    (dict(share_ci=(0.6, 0.8)), R_),
+    (dict(share_ci=(0.4, 0.6)), P_),
+    (dict(share_ci=(0.08, 0.16)), N_)])
 def status_fig8(m: dict) -> Status:
-    """Each combined estimate's error below a tenth of the objects' separation."""
-    return R_ if all(e < m["separation_km"] / 10 for e in m["displayed_err_km"]) else N_
+    """Share of draws in which both combined estimates' errors are below a tenth of the
+    objects' separation (95 % Wilson interval): above 0.5 reproduced, containing 0.5 partial,
+    below not reproduced."""
+    lo, hi = m["share_ci"]
+    if lo >= 0.5:
+        return R_
+    return P_ if hi >= 0.5 else N_
 
 
 # --------------------------------------------------------------------------- measurements
@@ -401,6 +427,8 @@ def table4_paired(scen: Scenario, mc: MonteCarlo, *, confidence: float = 0.95,
 
     ``key="mean_d_true"`` uses the correct associations only.
     """
+    if key not in ("mean_d", "mean_d_true"):
+        raise ValueError(f"key must be 'mean_d' or 'mean_d_true', got {key!r}")
     noisy, free = mc.stack(key), mc.stack(key.replace("mean_d", "mean_d0"))
     use = [i for i, (a, b) in enumerate(PAIRS) if np.any(scen.visible[a] & scen.visible[b])]
     q = student_t.ppf(1 - (1 - confidence) / (2 * len(use)), max(mc.n_draws - 1, 1))
@@ -420,7 +448,9 @@ def table4_paired(scen: Scenario, mc: MonteCarlo, *, confidence: float = 0.95,
 def fig5_bootstrap(mc: MonteCarlo, band: tuple[float, float], *, n_boot: int = 2000,
                    confidence: float = 0.95, rng: np.random.Generator | None = None) -> dict:
     """Bootstrap over the draws (resampled with replacement) of the best threshold and of the
-    best correct rate inside ``band``: point values and percentile intervals."""
+    best correct rate inside ``band`` under both readings — correct of the true pairs
+    (``acc``) and correct of the associated pairs (``prec``, 1 − the paper's 误判率): point
+    values and percentile intervals."""
     rng = np.random.default_rng(0) if rng is None else rng
     th = mc.sweep.thresholds
     C, Fa = mc.stack("correct"), mc.stack("false")
@@ -432,11 +462,18 @@ def fig5_bootstrap(mc: MonteCarlo, band: tuple[float, float], *, n_boot: int = 2
     inb = (th >= band[0]) & (th <= band[1])
     best = th[np.argmin(err, 1)]
     accb = acc[:, inb].max(1)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        prec = c / (c + f)  # the paper's reading: 1 − false / associated
+        prec0 = C.sum(0) / (C.sum(0) + Fa.sum(0))
+    precb = np.nanmax(prec[:, inb], 1)
     a = (1 - confidence) / 2
     return {"best_L": mc.sweep.best_threshold,
             "best_L_ci": tuple(float(x) for x in np.quantile(best, [a, 1 - a])),
             "acc": float(mc.sweep.accuracy[inb].max()),
             "acc_ci": tuple(float(x) for x in np.quantile(accb, [a, 1 - a])),
+            "prec": float(np.nanmax(prec0[inb])),
+            "prec_L": float(th[inb][int(np.nanargmax(prec0[inb]))]),
+            "prec_ci": tuple(float(x) for x in np.quantile(precb, [a, 1 - a])),
             "n_boot": n_boot, "confidence": confidence}
 
 
@@ -508,7 +545,8 @@ def score(scen: Scenario, draw: DisplayedDraw, mc: MonteCarlo, res6: dict, *,
         f"(95 % {100 * lo4:.1f}–{100 * hi4:.1f} %); displayed draw "
         f"{int(sc['correct'].sum())}/{int(sc['true'].sum())}, {int(sc['false'].sum())} false; "
         f"maps 2–3 share {m4['shared_23']} objects; {m4['n_false']} false associations in "
-        f"all draws, the three-view check removes {100 * m4['removed_share']:.0f} %",
+        f"all draws; our three-view check (a variant, not scored) removes "
+        f"{100 * m4['removed_share']:.0f} %",
         f"of {n_missed} true pairs lost over the draws, {n_far} lie beyond L = {L:g} px "
         f"(noise) and {n_missed - n_far} were taken by a nearer wrong candidate (noise-free, "
         "another object lies within "
@@ -519,17 +557,24 @@ def score(scen: Scenario, draw: DisplayedDraw, mc: MonteCarlo, res6: dict, *,
     # ---- Table 3
     tables["Table 3"] = table3(scen, draw)
     rec_mc = mc.stack("objects_recovered")
-    m3t = {"displayed_recovered": objects_recovered(obs, draw.rows, scen),
-           "n_objects": len(scen.names), "mean_recovered": float(rec_mc.mean())}
-    n_obj = m3t["n_objects"]
+    n_obj = len(scen.names)
+    k9 = int(np.sum(rec_mc == n_obj))
+    se_rec = float(rec_mc.std(ddof=1) / np.sqrt(len(rec_mc))) if len(rec_mc) > 1 else np.inf
+    q_rec = float(student_t.ppf(0.975, max(len(rec_mc) - 1, 1)))
+    m3t = {"all_nine_ci": tuple(float(x) for x in binomial_interval(k9, n_draws, confidence=0.95)),
+           "mean_recovered_ci": (float(rec_mc.mean()) - q_rec * se_rec,
+                                 float(rec_mc.mean()) + q_rec * se_rec),
+           "n_objects": n_obj, "displayed_recovered": objects_recovered(obs, draw.rows, scen)}
     add("epipolar.table3", status_table3(m3t),
         f"displayed draw: {m3t['displayed_recovered']}/{n_obj} objects recovered as Table 3 "
         f"rows, {len(draw.rows) - m3t['displayed_recovered']} further multi-map row(s); over "
-        f"{n_draws} draws {rec_mc.mean():.1f}/{n_obj} on average, all nine in "
-        f"{100 * np.mean(rec_mc == n_obj):.0f} %, table exactly Table 3 in "
+        f"{n_draws} draws {rec_mc.mean():.2f}/{n_obj} on average (95 % "
+        f"{m3t['mean_recovered_ci'][0]:.2f}–{m3t['mean_recovered_ci'][1]:.2f}), all nine in "
+        f"{100 * k9 / n_draws:.0f} % (95 % {100 * m3t['all_nine_ci'][0]:.0f}–"
+        f"{100 * m3t['all_nine_ci'][1]:.0f} %), table exactly Table 3 in "
         f"{100 * np.mean(mc.stack('perfect_table')):.0f} %",
-        f"{n_obj - m3t['displayed_recovered']} object(s) split or merged with a false target "
-        "in the displayed draw: with several points per epipolar band (3 false targets per "
+        "objects are split or merged with a false target in most draws: with several points "
+        "per epipolar band (3 false targets per "
         "map plus objects seen by one sensor of a pair) the nearest candidate is sometimes "
         "the wrong one")
 
@@ -538,26 +583,44 @@ def score(scen: Scenario, draw: DisplayedDraw, mc: MonteCarlo, res6: dict, *,
     t4p = table4_paired(scen, mc)
     tables["Table 4 — paired over the draws (Bonferroni 95 %)"] = t4p.assign(
         pair=[f"{a + 1}-{b + 1}" for a, b in t4p["pair"]])
+    paper_noisy = np.asarray(P["epipolar.table4"]["mean_distance_noisy_px"], float)
+    pidx = [PAIRS.index(tuple(pr)) for pr in t4p["pair"]]
+    ratio4 = np.asarray(t4p["noisy mean (px)"], float) / paper_noisy[pidx]
     m4t = {"diff_ci": list(zip(t4p["ci_low"], t4p["ci_high"])),
-           "noisy_means": t4p["noisy mean (px)"].tolist()}
+           "level_ratio": ratio4[np.isfinite(ratio4)].tolist()}
     st4 = status_table4(m4t)
+    # the criterion before 2026-11-22 (one displayed draw; noisy means in 1-10 px), kept so
+    # the report can say what the post-results change did
+    dn = draw.scores["mean_distance_px"].to_numpy(float)
+    d0 = draw.scores0["mean_distance_px"].to_numpy(float)
+    both = np.isfinite(dn) & np.isfinite(d0)
+    old_ok = bool(np.all(dn[both] > d0[both])
+                  and np.all((dn[np.isfinite(dn)] > 1) & (dn[np.isfinite(dn)] < 10)))
+    worst_old = int(np.nanargmin(np.where(np.isfinite(dn), dn, np.inf)))
     results.append(ClaimResult.from_claim(
         claims["epipolar.table4"], status=st4,
         ours=(f"{n_draws} paired draws; noisy − noise-free (px, Bonferroni 95 %): "
               + "; ".join(f"{a + 1}-{b + 1} {m:+.2f} [{lo:+.2f}, {hi:+.2f}]" for (a, b), m, lo, hi
                           in zip(t4p["pair"], t4p["noisy − noise-free (px)"], t4p["ci_low"],
                                  t4p["ci_high"]))),
-        note="" if st4 is R_ else
-        ("the ordering is not significant for every pair: the means mix correct pairs "
-         "(noise-free ≈ 0 px) with false associations (spread over 0–L in both runs)")))
+        note=("noisy level over the paper's (b, c, e, f): "
+              + ", ".join(f"{v:.2f}" for v in m4t["level_ratio"])
+              + " (the criterion asks 0.5–2); with ±1′ uniform attitude errors our noisy "
+              f"means are {t4p['noisy mean (px)'].min():.1f}–{t4p['noisy mean (px)'].max():.1f}"
+              f" px against the paper's {np.nanmin(paper_noisy):.1f}–"
+              f"{np.nanmax(paper_noisy):.1f} px. History: the criterion was "
+              "changed on 2026-11-22 after results were seen; under the earlier one-draw "
+              f"criterion the status would be "
+              f"'{'reproduced' if old_ok else 'not reproduced'}' (displayed draw, pair "
+              f"{PAIR_LABELS[worst_old]} noisy mean {dn[worst_old]:.3f} px)")))
 
     # ---- Fig. 5 (bootstrap over the draws)
     p5 = P["epipolar.fig5"]
     lo, hi = p5["best_threshold_px"]
     b5 = fig5_bootstrap(mc, (lo, hi), rng=np.random.default_rng(boot_seed),
-                        confidence=1 - 0.05 / 2)  # Bonferroni over the two readings
-    m5 = {"best_L_ci": b5["best_L_ci"], "acc_ci": b5["acc_ci"], "band": (lo, hi),
-          "acc_min": 0.85}
+                        confidence=1 - 0.05 / 3)  # Bonferroni over the three intervals
+    m5 = {"best_L_ci": b5["best_L_ci"], "acc_ci": b5["acc_ci"], "prec_ci": b5["prec_ci"],
+          "band": (lo, hi), "acc_min": 0.85}
     st5 = status_fig5(m5)
     sig_rms_nom, gate_nom = error_budget_gate(scen, errors)
     _, gate_rms = error_budget_gate(scen, replace(
@@ -571,10 +634,14 @@ def score(scen: Scenario, draw: DisplayedDraw, mc: MonteCarlo, res6: dict, *,
     add("epipolar.fig5", st5,
         f"{n_draws} draws, {sw.n_true} true pairs "
         f"({int(sw.n_associated[sw.thresholds == L][0])} associated at L = {L:g}); best L = "
-        f"{b5['best_L']:g} px (97.5 % {b5['best_L_ci'][0]:g}–{b5['best_L_ci'][1]:g}); best "
-        f"correct rate in {lo:g}–{hi:g} px {100 * b5['acc']:.1f} % (97.5 % "
+        f"{b5['best_L']:g} px (98.3 % {b5['best_L_ci'][0]:g}–{b5['best_L_ci'][1]:g}); best "
+        f"correct rate in {lo:g}–{hi:g} px: of the associated pairs (the paper's 误判率 "
+        f"reading) {100 * b5['prec']:.1f} % (98.3 % {100 * b5['prec_ci'][0]:.1f}–"
+        f"{100 * b5['prec_ci'][1]:.1f} %), of the true pairs {100 * b5['acc']:.1f} % (98.3 % "
         f"{100 * b5['acc_ci'][0]:.1f}–{100 * b5['acc_ci'][1]:.1f} %)",
-        f"the optimum follows the spread of true-pair distances, σ ≈ {sig_rms_nom:.1f} px for "
+        "the best L lies below 8–12 px because false candidates in the epipolar bands pull "
+        "it below the spread of the true-pair distances; "
+        f"σ ≈ {sig_rms_nom:.1f} px for "
         f"uniform ±1′ attitude errors (99 % χ²₁ gate {gate_nom:.1f} px, the library default); "
         f"read as 1′ rms the gate is {gate_rms:.1f} px (notebook, Beyond, exploratory). False "
         "targets per map (3, unstated in the paper) set the false share")
@@ -624,7 +691,8 @@ def score(scen: Scenario, draw: DisplayedDraw, mc: MonteCarlo, res6: dict, *,
         "with attitude errors up to 1′ (2.9e-4 rad) a line of sight from "
         f"{rng_km:,.0f} km misses by up to ~{rng_km * 2.9e-4:.0f} km, and the short baselines "
         f"(sensors {min(base):,.0f}–{max(base):,.0f} km apart) stretch that along the line of "
-        "sight; 3 km needs arcsecond-level attitude errors (notebook, Beyond). GEO1 has one "
+        "sight; 3 km needs arcsecond-level attitude errors and smaller position errors than "
+        "0.2 km (notebook, Beyond). GEO1 has one "
         "pair only (Table 3 puts it in maps 1 and 4; the paper's Table 5 also uses 1&2 and "
         "2&4)")
     if images is not None:
@@ -632,15 +700,19 @@ def score(scen: Scenario, draw: DisplayedDraw, mc: MonteCarlo, res6: dict, *,
     sep = float(np.linalg.norm(scen.objects_km[0] - scen.objects_km[4]))
     t5p = P["epipolar.table5"]
     sep_paper = float(np.linalg.norm(np.subtract(t5p["geo1_km"][-1], t5p["geo5_km"][-1])))
-    m8 = {"displayed_err_km": disp_err, "separation_km": sep}
-    st8_paper = status_fig8({"displayed_err_km": disp_err, "separation_km": sep_paper})
-    share8 = [float(np.mean(np.all(tri < s / 10, axis=1))) for s in (sep, sep_paper)]
+    k8 = [int(np.sum(np.all(tri < s / 10, axis=1))) for s in (sep, sep_paper)]
+    share8 = [k / n_draws for k in k8]
+    ci8 = [tuple(float(x) for x in binomial_interval(k, n_draws, confidence=0.95)) for k in k8]
+    m8 = {"share_ci": ci8[0]}
+    st8_paper = status_fig8({"share_ci": ci8[1]})
     add("epipolar.fig8", status_fig8(m8),
         f"separation GEO1–GEO5 {sep:.0f} km (ours, GEO5 from Table 3) / {sep_paper:.0f} km "
-        f"(Table 5 truths); estimate errors {disp_err[0]:.1f}, {disp_err[1]:.1f} km; both below "
-        f"a tenth of the separation in {100 * share8[0]:.0f} % / {100 * share8[1]:.0f} % of the "
-        f"draws; at the paper's separation the status would be '{st8_paper}'",
-        f"errors {disp_err[0]:.0f} and {disp_err[1]:.0f} km against a {sep:.0f} km separation "
+        f"(Table 5 truths); both combined errors below a tenth of the separation in "
+        f"{100 * share8[0]:.1f} % (95 % {100 * ci8[0][0]:.1f}–{100 * ci8[0][1]:.1f} %) / "
+        f"{100 * share8[1]:.1f} % (95 % {100 * ci8[1][0]:.1f}–{100 * ci8[1][1]:.1f} %) of the "
+        f"{n_draws} draws; at the paper's separation the status would be '{st8_paper}' "
+        f"(displayed draw: errors {disp_err[0]:.1f}, {disp_err[1]:.1f} km)",
+        f"median errors {med[0]:.0f} and {med[1]:.0f} km against a {sep:.0f} km separation "
         "(the Table 5 error, 1′ attitude noise)")
 
     # ---- Beyond: error-budget gate, three-view check, global assignment
