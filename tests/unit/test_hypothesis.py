@@ -224,7 +224,8 @@ def test_held_out_spot_pixel_monte_carlo_follows_the_pixels_form():
     assert not mc_agreement(hits, n, hyp.area_detection(p_pix.mean(), pf, 7, 9, s))
 
 
-def _faster_target_coverage(speed: float, gate: int, seed: int) -> tuple[float, int]:
+def _faster_target_coverage(speed: float, gate: int, seed: int,
+                            direction: tuple[float, float] = (0.8, 0.6)) -> tuple[float, int]:
     from eotrack.experiments.track_init_ht import match_tracks
     from eotrack.imaging import DimSequenceConfig, DimTarget, candidate_frames
     from eotrack.imaging.dim_targets import (
@@ -240,7 +241,7 @@ def _faster_target_coverage(speed: float, gate: int, seed: int) -> tuple[float, 
 
     sig = fwhm_to_sigma(3)
     snr = peak_snr_for_pixel_pd(0.98, 0.03, sig, 3)
-    path = straight_path((30.0, 40.0), (0.8 * speed, 0.6 * speed), 30)
+    path = straight_path((30.0, 40.0), (direction[0] * speed, direction[1] * speed), 30)
     cfg = DimSequenceConfig(shape=(160, 192), n_frames=30, clutter_sigma=10.0,
                             clutter_scale_px=40.0, targets=(DimTarget(path, snr=snr, sigma_px=sig),))
     seq = simulate_dim_sequence(cfg, np.random.default_rng(seed))
@@ -250,14 +251,16 @@ def _faster_target_coverage(speed: float, gate: int, seed: int) -> tuple[float, 
     return float(cov[0]), int(np.sum(owner < 0))
 
 
-@pytest.mark.parametrize("speed, gate, recovered", [
-    (1.0, 3, True),   # within n_k = 1 px/frame of the last point: the paper's gate works
-    (3.0, 3, False),  # 3 px/frame leaves the 3x3 gate before the velocity fit starts
-    (3.0, 5, True),   # ... a 5x5 gate (n_k = 2) starts it, then the prediction follows
+@pytest.mark.parametrize("speed, gate, direction, recovered", [
+    (1.0, 3, (0.8, 0.6), True),   # within n_k = 1 px/frame of the last point: the paper's gate
+    (3.0, 3, (0.8, 0.6), False),  # 3 px/frame leaves the 3x3 gate before the velocity fit starts
+    (3.0, 5, (0.8, 0.6), True),   # ... a 5x5 gate (n_k = 2) starts it: (2.4, 1.8) px per axis
+    (2.0, 5, (1.0, 0.0), True),   # along an axis: 2 px/frame = n_k is inside the 5x5 gate
+    (3.0, 5, (1.0, 0.0), False),  # ... 3 px/frame on one axis is not: the limit is per axis
 ])
-def test_held_out_faster_target_and_the_gate(speed, gate, recovered):
+def test_held_out_faster_target_and_the_gate(speed, gate, direction, recovered):
     """A 160x192 scene, clutter = noise sigma, P_F 0.03: the temporal test's speed range."""
-    res = [_faster_target_coverage(speed, gate, seed) for seed in (1, 2, 3)]
+    res = [_faster_target_coverage(speed, gate, seed, direction) for seed in (1, 2, 3)]
     cov = np.array([c for c, _ in res])
     assert all(f == 0 for _, f in res)  # no false track in this lighter clutter
     if recovered:

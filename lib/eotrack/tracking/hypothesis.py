@@ -37,9 +37,11 @@ Operating range (held-out tests in ``tests/unit/test_hypothesis.py``, ``test_cfa
   reproduction's ``P_FA`` table);
 * eqs. (9), (12), (13) assume a gate that stays on its target. With the nearest-neighbour
   initiator (``TemporalContinuityInitiator``, gate centred on the last point until three hits)
-  a target is followed only if it moves at most about ``n_k`` px per frame (gate ``2 n_k + 1``):
-  with the paper's 3 × 3 gate 1 px/frame is tracked and 3 px/frame is lost; a 5 × 5 gate
-  tracks 3 px/frame. Among dense false alarms (``P_F`` ≳ 0.03 in the gate) the gate is lured
+  a target is followed only if it moves at most about ``n_k`` px per frame **on each axis**
+  (gate ``2 n_k + 1``; the gate is square, so the limit is on ``|v_x|`` and ``|v_y|``
+  separately, not on the speed): with the paper's 3 × 3 gate 1 px/frame is tracked and
+  3 px/frame is lost; a 5 × 5 gate tracks (2.4, 1.8) px/frame (speed 3 along a diagonal) and
+  2 px/frame along an axis, but loses 3 px/frame along an axis. Among dense false alarms (``P_F`` ≳ 0.03 in the gate) the gate is lured
   away, so the true-track rate falls below eq. (13).
 """
 
