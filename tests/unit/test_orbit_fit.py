@@ -167,3 +167,80 @@ def test_bad_inputs():
         line_of_sight(np.zeros(3), np.zeros(2))
     with pytest.raises(TypeError):
         fit_orbit(t, np.zeros(3), np.zeros(3), s, n_triplets="6")
+
+
+# a GTO near apogee, 2 h of angles from a southern station: the J2 fit once crashed here, a
+# least-squares trial step putting the state inside the Earth (independent review, issue 24)
+def _gto_angles(t_s):
+    """Kepler truth for a = 24,400 km, e = 0.73, i = 27°, Ω = 40°, ω = 180°, M(0) = 150°."""
+    a, e = 24400.0, 0.73
+    inc, raan, argp, m0 = np.radians([27.0, 40.0, 180.0, 150.0])
+    m = m0 + np.sqrt(MU_EARTH_KM3_S2 / a**3) * t_s
+    ecc = m.copy()
+    for _ in range(50):
+        ecc -= (ecc - e * np.sin(ecc) - m) / (1 - e * np.cos(ecc))
+    nu = 2 * np.arctan2(np.sqrt(1 + e) * np.sin(ecc / 2), np.sqrt(1 - e) * np.cos(ecc / 2))
+    r, u = a * (1 - e * np.cos(ecc)), argp + nu
+    pos = r[:, None] * np.c_[np.cos(raan) * np.cos(u) - np.sin(raan) * np.sin(u) * np.cos(inc),
+                             np.sin(raan) * np.cos(u) + np.cos(raan) * np.sin(u) * np.cos(inc),
+                             np.sin(u) * np.sin(inc)]
+    lat, th = np.radians(-24.6), 0.3 + 7.2921159e-5 * t_s  # the reviewer's station, exactly
+    site = 6378.137 * np.c_[np.cos(lat) * np.cos(th), np.cos(lat) * np.sin(th),
+                            np.full_like(t_s, np.sin(lat))]
+    ra, dec = angles_from_positions(pos, site)
+    return ra, dec, site
+
+
+def test_j2_fit_survives_trial_steps_inside_the_earth():
+    t = 5000.0 + np.arange(80) * 90.0
+    ra, dec, site = _gto_angles(t)
+    import eotrack.astro.orbit_fit as of
+
+    calls, penalised = [0], [0]
+    real = of._residuals
+
+    def spy(x, *args):
+        r = real(x, *args)
+        calls[0] += 1
+        penalised[0] += bool(r[0] == of._PENALTY_ARCSEC)
+        return r
+
+    of._residuals = spy
+    try:
+        fit = fit_orbit(t, ra, dec, site, dynamics="j2")  # sigma 1″, as the review ran it
+    finally:
+        of._residuals = real
+    assert penalised[0] >= 1  # the case does reach the inadmissible-state branch
+    assert np.isfinite(fit.r_km).all() and np.linalg.norm(fit.r_km) > 6378.0
+    # J2 changes a 2-h GTO arc near apogee by far less than the noise: residuals stay small
+    assert np.abs(fit.residuals_arcsec).max() < 3.0
+    # a state inside the Earth is not propagated under J2: large finite residuals instead
+    from eotrack.astro.orbit_fit import _residuals
+
+    r = _residuals(np.r_[1000.0, 0.0, 0.0, 0.0, 1.0, 0.0], t - t[40], site, ra, dec,
+                   np.cos(np.radians(dec)), "j2")
+    assert np.isfinite(r).all() and (r >= 1e5).all()
+
+
+def test_unit_errors_are_named():
+    t = 5000.0 + np.arange(80) * 90.0
+    ra, dec, site = _gto_angles(t)
+    # sigma in degrees instead of arcsec: every residual would count as an outlier
+    with pytest.warns(RuntimeWarning, match="sigma_arcsec .* in arcsec"):
+        fit_orbit(t, ra, dec, site, sigma_arcsec=3.0 / 3600.0)
+    # station in metres
+    with pytest.raises(ValueError, match=r"site_km must be in km.*metres"):
+        fit_orbit(t, ra, dec, site * 1000.0, sigma_arcsec=3.0)
+    # angles in radians: a warning names the unit; where the fit runs away (|r| ~ 10^10 km
+    # here, as the review found) an error names it too
+    with pytest.warns(RuntimeWarning, match="radians"):
+        with pytest.raises(ValueError, match=r"implausible .* degrees \(not radians\)"):
+            fit_orbit(t, np.radians(ra), np.radians(dec), site)
+    with pytest.warns(RuntimeWarning, match="radians"):
+        fit_orbit(t, np.radians(ra), np.radians(dec), site, sigma_arcsec=3.0)
+    # the right units: no warning
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        fit_orbit(t, ra, dec, site)

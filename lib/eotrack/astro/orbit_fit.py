@@ -17,6 +17,11 @@ module turns those angles into an orbit and predicts the angles at other times:
 
 Dynamics: two-body (universal-variable Kepler propagation, vectorised over times) or two-body
 plus the J2 zonal term (numerical integration, :func:`scipy.integrate.solve_ivp`, DOP853).
+The J2 term takes the frame's z axis as Earth's pole: in GCRS that ignores precession-nutation
+since J2000 (about 0.3° by the 2020s), a small error in a small term, acceptable for the
+short arcs fitted here but not for precise orbit determination. The Gauss start is Curtis's
+Algorithm 5.5 without the iterative refinement of Algorithm 5.6: the least-squares fit that
+follows refines it.
 Frame: any quasi-inertial geocentric frame in which the station positions are given (GCRS in
 this project, :meth:`eotrack.astro.Station.gcrs_km`); km, km/s, s, degrees. Light time and
 aberration are ignored (the observations are geometric, like
@@ -26,6 +31,7 @@ aberration are ignored (the observations are geometric, like
 from __future__ import annotations
 
 import time
+import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -184,7 +190,7 @@ def propagate_state(r0_km: np.ndarray, v0_km_s: np.ndarray, dt_s: np.ndarray, *,
         te = tt[order]
         sol = solve_ivp(_j2_rhs, (0.0, float(te[-1]) if te[-1] != 0 else 1e-9), y0,
                         method="DOP853", t_eval=te, rtol=rtol, atol=1e-9, args=(float(mu),))
-        if not sol.success:  # pragma: no cover - DOP853 on a bound orbit
+        if not sol.success:  # e.g. a trial state inside the Earth (fit_orbit catches this)
             raise RuntimeError(f"J2 propagation failed: {sol.message}")
         pos = np.empty((len(te), 3))
         pos[:] = sol.y[:3].T
@@ -334,9 +340,26 @@ class OrbitFit:
         return angles_from_positions(self.positions(t), site)
 
 
+#: Residual (arcsec) given to every angle of an inadmissible trial state: a J2 trial state
+#: inside the Earth, or one whose integration fails. Large and finite, so the least-squares
+#: solver rejects the step and shrinks its trust region instead of stopping on an error.
+_PENALTY_ARCSEC = 1.0e6
+#: Largest plausible geocentric distance of a fitted object (km); beyond it the inputs are
+#: most likely in the wrong units.
+_MAX_RANGE_KM = 1.0e6
+
+
 def _residuals(x: np.ndarray, dt: np.ndarray, site: np.ndarray, ra: np.ndarray,
                dec: np.ndarray, cosd: np.ndarray, dynamics: str) -> np.ndarray:
-    pos = propagate_state(x[:3], x[3:], dt, dynamics=dynamics)
+    penalty = np.full(2 * len(dt), _PENALTY_ARCSEC)
+    if dynamics != "twobody" and np.linalg.norm(x[:3]) < EARTH_RADIUS_KM:
+        return penalty
+    try:
+        pos = propagate_state(x[:3], x[3:], dt, dynamics=dynamics)
+    except RuntimeError:
+        return penalty
+    if not np.all(np.isfinite(pos)):
+        return penalty
     ra_p, dec_p = angles_from_positions(pos, site)
     dra = (ra - ra_p + 180.0) % 360.0 - 180.0
     return np.r_[dra * cosd, dec - dec_p] * _ARCSEC
@@ -383,7 +406,17 @@ def fit_orbit(t_s: np.ndarray, ra_deg: np.ndarray, dec_deg: np.ndarray, site_km:
     Raises
     ------
     ValueError
-        On bad inputs, or when no triplet gives an admissible Gauss solution.
+        On bad inputs (including station positions that look like metres), when no triplet
+        gives an admissible Gauss solution, or when the fitted distance exceeds 10⁶ km (angles
+        in radians, not degrees, or positions in the wrong unit).
+
+    Warns
+    -----
+    RuntimeWarning
+        When fewer than half the observations end as inliers: with good data this points to
+        ``sigma_arcsec``/``f_scale`` in the wrong unit (they are arcsec) or to angles that do
+        not belong to one object; and when every angle lies within the radian ranges
+        ([0, 2π] for RA, [−π/2, π/2] for Dec).
     """
     t0 = time.perf_counter()
     t = as_finite_array(t_s, "t_s", ndim=1)
@@ -395,6 +428,11 @@ def fit_orbit(t_s: np.ndarray, ra_deg: np.ndarray, dec_deg: np.ndarray, site_km:
     ra = as_finite_array(ra_deg, "ra_deg", shape=(n,))
     dec = as_finite_array(dec_deg, "dec_deg", shape=(n,))
     site = as_finite_array(site_km, "site_km", shape=(n, 3))
+    site_r = float(np.median(np.linalg.norm(site, axis=1)))
+    if site_r > 1.0e5:
+        raise ValueError(f"site_km must be in km: the median station distance is {site_r:.3g}, "
+                         "which looks like metres (a ground station is about 6,378 km from "
+                         "the geocentre)")
     sig = check_positive(sigma_arcsec, "sigma_arcsec")
     check_choice(loss, "loss", ROBUST_LOSSES)
     fs = 2.0 * sig if f_scale is None else check_positive(f_scale, "f_scale")
@@ -404,6 +442,10 @@ def fit_orbit(t_s: np.ndarray, ra_deg: np.ndarray, dec_deg: np.ndarray, site_km:
     ep = float(t[n // 2]) if epoch_s is None else float(epoch_s)
     if not np.isfinite(ep):
         raise ValueError(f"epoch_s must be finite, got {epoch_s}")
+    if np.all((ra >= 0) & (ra <= 2 * np.pi)) and np.all(np.abs(dec) <= np.pi / 2):
+        warnings.warn("fit_orbit: every ra_deg lies in [0, 2π] and every dec_deg in [−π/2, π/2]; "
+                      "are the angles in radians? They must be in degrees", RuntimeWarning,
+                      stacklevel=2)
     dt = t - ep
     cosd = np.cos(np.radians(dec))
     args = (dt, site, ra, dec, cosd, dynamics)
@@ -439,16 +481,28 @@ def fit_orbit(t_s: np.ndarray, ra_deg: np.ndarray, dec_deg: np.ndarray, site_km:
                     cands.append((robust_cost(x), x))
         if not cands:
             raise ValueError("no admissible Gauss initial orbit from the observation triplets; "
-                             "give x0")
+                             "check the units (ra_deg and dec_deg in degrees, site_km in km, "
+                             f"median station distance here {site_r:.4g}) or give x0")
         start = min(cands, key=lambda c: c[0])[1]
     scale = np.r_[np.full(3, max(np.linalg.norm(start[:3]), 1.0) * 1e-3),
                   np.full(3, max(np.linalg.norm(start[3:]), 1e-3) * 1e-3)]
     sol = least_squares(_residuals, start, args=args, loss=loss, f_scale=fs, x_scale=scale,
                         method="trf", max_nfev=nfev)
     res = sol.fun.reshape(2, n).T
+    r_fit = float(np.linalg.norm(sol.x[:3]))
+    if r_fit > _MAX_RANGE_KM:
+        raise ValueError(f"the fitted orbit is {r_fit:.3g} km from the geocentre, implausible "
+                         "for an Earth orbit: are ra_deg and dec_deg in degrees (not radians) "
+                         "and site_km in km?")
+    inl = np.hypot(res[:, 0], res[:, 1]) <= 3 * fs
+    if inl.sum() < n / 2:
+        warnings.warn(f"fit_orbit: only {int(inl.sum())} of {n} observations are inliers "
+                      f"(within 3 × f_scale = {3 * fs:.3g}″); is sigma_arcsec (or f_scale) in "
+                      "arcsec, and do all angles belong to one object?", RuntimeWarning,
+                      stacklevel=2)
     return OrbitFit(epoch_s=ep, r_km=sol.x[:3].copy(), v_km_s=sol.x[3:].copy(),
                     dynamics=dynamics, residuals_arcsec=res,
-                    inliers=np.hypot(res[:, 0], res[:, 1]) <= 3 * fs, cost=float(sol.cost),
+                    inliers=inl, cost=float(sol.cost),
                     success=bool(sol.success), n_evaluations=int(sol.nfev),
                     seconds=time.perf_counter() - t0,
                     extra={"x0": start, "loss": loss, "f_scale": fs})
