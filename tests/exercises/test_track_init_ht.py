@@ -72,9 +72,10 @@ RIGHT = {
     "track_init_ht.1": [_right_1],
     "track_init_ht.2": [_s_ex2(7)],
     # the grid answer, and the exact SNR a student may compute instead of reading the slider
-    "track_init_ht.3": [math.ceil(_right_3_exact() * 10) / 10, _right_3_exact()],
+    "track_init_ht.3": [math.ceil(_right_3_exact() * 10) / 10, _right_3_exact(),
+                        round(_right_3_exact(), 3), round(_right_3_exact() + 0.01, 3)],
     "track_init_ht.4": [_pda_ex4(9, 6)],
-    "track_init_ht.5": [(1 - paper_settings()["cfar_p_f"]) ** 16],
+    "track_init_ht.5": [(1 - paper_settings()["cfar_p_f"]) ** (49 - 9)],
 }
 
 WRONG = {
@@ -85,12 +86,15 @@ WRONG = {
                         _s_ex2(7) + 1],
     # exact P_DA < 0.9 at 3.7 (the review's finding); 3.9 is not the smallest
     "track_init_ht.3": [round(math.ceil(_right_3_exact() * 10) / 10 - 0.1, 1),
-                        round(math.ceil(_right_3_exact() * 10) / 10 + 0.1, 1), 2.0],
+                        round(math.ceil(_right_3_exact() * 10) / 10 + 0.1, 1), 2.0,
+                        # off-grid values just below the exact threshold: P_DA < 0.9 there
+                        round(_right_3_exact() - 0.008, 3), round(_right_3_exact() - 0.003, 3)],
     "track_init_ht.4": [_pda_ex4(9, 6, exact=False),  # eq. (7)
                         _pda_ex4(4, 6),  # Fig. 1's T_S = 4
                         _pda_ex4(9, 7),  # D > S
                         _pda_ex4(9, 5)],
-    "track_init_ht.5": [1 - 0.03],
+    "track_init_ht.5": [1 - 0.03, 0.97 ** 16,  # the notebook's 5x5 window (its P_1 is printed)
+                        0.97 ** 49, 1 - 0.97 ** 40],  # T_S forgotten; P_0 itself
 }
 
 BAD = {
@@ -130,6 +134,10 @@ def test_exercise_3_neighbours_of_the_threshold():
     assert best(grid) >= 0.9 > best(round(grid - 0.1, 1))
     assert not check("track_init_ht.3", 3.7)
     assert check("track_init_ht.3", grid)
+    # the review's off-grid case: 3.77 is within 0.04 of 3.8 but its best P_DA is below 0.9
+    assert best(3.77) < 0.9 and not check("track_init_ht.3", 3.77)
+    assert not check("track_init_ht.3", 3.775)
+    assert best(_right_3_exact() + 1e-6) >= 0.9
 
 
 @pytest.mark.parametrize("eid", sorted(BAD))

@@ -160,14 +160,16 @@ display(Markdown(
 # $P_1 = P_D + P_0$ with $P_0 = 1-(1-P_F)^{W_S-T_S}$, so $P_1>1 \iff P_D > (1-P_F)^{W_S-T_S}$.
 
 # %%
-p_f5, w5, ts5 = P["cfar_p_f"], P["window"], P["curved_size_px"] ** 2
+p_f5, w5, ts5 = P["cfar_p_f"], 7, P["curved_size_px"] ** 2  # the exercise's 7 x 7 window
 answer = (1 - p_f5) ** (w5 * w5 - ts5)
 assert check("track_init_ht.5", answer)
 display(Markdown(
-    f"$P_1 > 1$ for $P_D >$ {answer:.3f}. The paper's own experiment states $P_D$ = "
-    f"{P['cfar_p_d']:g}, where eq. (6) gives $P_1$ = "
-    f"{hyp.p1_paper(P['cfar_p_d'], p_f5, w5, ts5):.2f}: eq. (7) is then undefined (the library "
-    "clips $P_1$ to 1, making $P_{DA}$ = 1 for every S)."))
+    f"$P_1 > 1$ for $P_D >$ {answer:.3f} on the {w5}×{w5} window (on the notebook's "
+    f"{P['window']}×{P['window']} window the bound is "
+    f"{(1 - p_f5) ** (P['window'] ** 2 - ts5):.3f}: a larger window lowers it). The paper's own "
+    f"experiment states $P_D$ = {P['cfar_p_d']:g}, where eq. (6) gives $P_1$ = "
+    f"{hyp.p1_paper(P['cfar_p_d'], p_f5, w5, ts5):.2f} here: eq. (7) is then undefined (the "
+    "library clips $P_1$ to 1, making $P_{DA}$ = 1 for every S)."))
 
 # %%
 display(Markdown(
