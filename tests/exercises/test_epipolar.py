@@ -22,10 +22,12 @@ def _right_1():
     return next(n for n in range(2, 100) if (n - 1) / np.sqrt(n) > 2.5)
 
 
+GRID = np.arange(0.5, 30.01, 0.5)  # the Explore slider's values
+
+
 def _right_3():
     st = E.threshold_study(1.0, 6)
-    th = np.linspace(0, st.l_max, 241)
-    return float(th[np.argmin(st.rates(th)["total"])])
+    return float(GRID[np.argmin(st.rates(GRID)["total"])])
 
 
 RIGHT = {
@@ -34,7 +36,8 @@ RIGHT = {
     "epipolar.3": _right_3,
     "epipolar.4": lambda: 0.01 * 1024 / (2 * np.tan(np.radians(10.0))),
     "epipolar.5": lambda: E.error_budget_gate(
-        E.build_scenario(), E.ErrorConfig(attitude_arcmin=np.sqrt(3.0)), p=0.95)[1],
+        E.build_scenario(), E.ErrorConfig(attitude_arcmin=np.sqrt(3.0), jitter_urad=100.0),
+        p=0.90)[1],
 }
 
 WRONG = {
@@ -45,7 +48,8 @@ WRONG = {
     "epipolar.3": lambda: 10.0,  # the paper's threshold
     "epipolar.4": lambda: 0.01 * 512 / (2 * np.tan(np.radians(1.0))),  # the experiment sensor
     "epipolar.5": lambda: E.error_budget_gate(
-        E.build_scenario(), E.ErrorConfig(attitude_arcmin=np.sqrt(3.0)))[1],  # the 99 % gate
+        E.build_scenario(), E.ErrorConfig(attitude_arcmin=np.sqrt(3.0), jitter_urad=100.0)
+    )[1],  # the 99 % gate
 }
 
 MORE_WRONG = [
@@ -54,23 +58,31 @@ MORE_WRONG = [
     ("epipolar.3", None),  # the optimum with 3 false targets (the report's), filled in below
     ("epipolar.4", 0.01 * 1024 / (2 * np.tan(np.radians(10.0))) / 1000),  # µrad
     ("epipolar.4", 0.01 * 1024 / (2 * np.radians(10.0)) * 2),  # half field read as full
-    ("epipolar.5", "uniform95"),  # the ±1′ bound reading at 95 %
+    ("epipolar.3", 4.0),  # the near-optimum of the 3-false case, one slider step off
+    ("epipolar.5", "uniform90"),  # the ±1′ bound reading
     ("epipolar.5", "chi2_2"),  # two degrees of freedom
+    ("epipolar.5", "no_jitter"),  # the printed σ_d (10 µrad jitter) × 1.645
+    ("epipolar.5", "p95"),  # 95 % instead of 90 %
+    ("epipolar.5", 3.761194070094244 * 1.959964),  # the old exercise: printed σ_d × z(0.975)
 ]
 
 
 def _more_wrong(ex, v):
     from scipy.stats import chi2
     scen = E.build_scenario()
-    if ex == "epipolar.3":
+    rms = E.ErrorConfig(attitude_arcmin=np.sqrt(3.0), jitter_urad=100.0)
+    if ex == "epipolar.3" and v is None:
         st = E.threshold_study(1.0, 3)
-        th = np.linspace(0, st.l_max, 241)
-        return float(th[np.argmin(st.rates(th)["total"])])
-    if v == "uniform95":
-        return E.error_budget_gate(scen, E.ErrorConfig(), p=0.95)[1]
+        return float(GRID[np.argmin(st.rates(GRID)["total"])])
+    if v == "uniform90":
+        return E.error_budget_gate(scen, E.ErrorConfig(jitter_urad=100.0), p=0.90)[1]
     if v == "chi2_2":
-        s, _ = E.error_budget_gate(scen, E.ErrorConfig(attitude_arcmin=np.sqrt(3.0)))
-        return s * np.sqrt(chi2.ppf(0.95, 2))
+        s, _ = E.error_budget_gate(scen, rms)
+        return s * np.sqrt(chi2.ppf(0.90, 2))
+    if v == "no_jitter":
+        return E.error_budget_gate(scen, E.ErrorConfig(attitude_arcmin=np.sqrt(3.0)), p=0.90)[1]
+    if v == "p95":
+        return E.error_budget_gate(scen, rms, p=0.95)[1]
     return v
 
 
@@ -95,6 +107,37 @@ def test_ex2_rejects_the_library_and_opencv():
         return np.abs(lines[:, :2] @ p2.T + lines[:, 2:])
 
     assert not check("epipolar.2", with_cv)
+
+    # imports inside the body (review of issue 25): static, submodule, dynamic
+    def inner_import(F, p1, p2):
+        from eotrack.geometry import epipolar_distances as ed
+
+        return ed(F, p1, p2)
+
+    def inner_cv(F, p1, p2):
+        import cv2 as c
+
+        lines = c.computeCorrespondEpilines(p1.reshape(-1, 1, 2), 1, F).reshape(-1, 3)
+        return np.abs(lines[:, :2] @ p2.T + lines[:, 2:])
+
+    def dunder(F, p1, p2):
+        return __import__("eotrack.geometry").geometry.epipolar_distances(F, p1, p2)
+
+    def importlib_way(F, p1, p2):
+        import importlib
+
+        return importlib.import_module("eotrack.geometry").epipolar_distances(F, p1, p2)
+
+    def nested(F, p1, p2):
+        def go():
+            from eotrack.geometry import epipolar_distances as ed
+
+            return ed(F, p1, p2)
+
+        return go()
+
+    for f in (inner_import, inner_cv, dunder, importlib_way, nested):
+        assert not check("epipolar.2", f), f.__name__
     assert check("epipolar.2", _right_2)  # numpy only passes
 
 
