@@ -287,3 +287,16 @@ def test_three_view_check_gate_arguments():
         three_view_check(pts[0], pts[1], [[0, 0]], cams[0], cams[1], [], sigma_px=-1.0)
     with pytest.raises(ValueError, match="p must be"):
         three_view_check(pts[0], pts[1], [[0, 0]], cams[0], cams[1], [], sigma_px=1.0, p=2)
+
+
+def test_p_with_an_explicit_threshold_is_refused():
+    from eotrack.geometry import associate
+
+    d = np.array([[1.0, 5.0], [4.0, 0.5]])
+    with pytest.raises(TypeError, match="p "):
+        associate(d, 10.0, p=1.0)
+    with pytest.raises(TypeError, match="p "):
+        associate(d, 10.0, p=0.99)
+    with pytest.raises(ValueError):
+        associate(d, sigma_px=1.0, p=1.0)  # p outside (0, 1)
+    assert associate(d, sigma_px=1.0).tolist() == associate(d, sigma_px=1.0, p=0.99).tolist()

@@ -214,3 +214,25 @@ def test_held_out_geo_ranges_short_baselines(seed, sensor):
     lines = cv2.computeCorrespondEpilines(q1.reshape(-1, 1, 2), 1, F).reshape(-1, 3)
     np.testing.assert_allclose(epipolar_distances(F, q1, q2),
                                np.abs(lines[:, :2] @ q2.T + lines[:, 2:]), atol=1e-6)
+
+
+def test_point_at_the_epipole_of_a_converging_pair_is_refused():
+    """Held-out (review of issue 25): a wide-field converging pair whose epipole lies inside
+    image 1. There F p1 is round-off, so distances would be arbitrary numbers; refused."""
+    from eotrack.geometry import epipoles, fundamental_from_poses, intrinsics_from_fov
+    from eotrack.geometry.rotations import look_at
+
+    K = intrinsics_from_fov(20.0, 20.0, 1024, 1024, 512.0, 512.0)
+    c1, c2 = np.zeros(3), np.array([0.1, 0.05, 1.0])
+    target = np.array([0.0, 0.0, 20.0])
+    up = (0.0, 1.0, 0.0)
+    F = fundamental_from_poses(K, look_at(target - c1, up), c1, K, look_at(target - c2, up), c2)
+    e1 = epipoles(F)[0]
+    e1 = e1[:2] / e1[2] if e1.shape == (3,) else e1
+    assert np.all((e1 > 0) & (e1 < 1024))  # the epipole is inside image 1
+    p2 = np.array([[100.0, 200.0], [700.0, 300.0]])
+    with pytest.raises(ValueError, match="epipole"):
+        epipolar_distances(F, e1[None], p2)
+    # a point one pixel away still has a well-defined line
+    d = epipolar_distances(F, e1[None] + [1.0, 0.0], p2)
+    assert np.all(np.isfinite(d))

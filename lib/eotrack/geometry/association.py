@@ -126,7 +126,7 @@ def greedy_candidates(dist, threshold) -> np.ndarray:
 
 
 def associate(dist, threshold=None, *, rule: str = "paper", sigma_px=None,
-              p: float = DEFAULT_GATE_PROBABILITY) -> np.ndarray:
+              p: float | None = None) -> np.ndarray:
     """One-to-one association from a distance matrix.
 
     Parameters
@@ -142,7 +142,8 @@ def associate(dist, threshold=None, *, rule: str = "paper", sigma_px=None,
         Predicted spread (px) of a true pair's distance; required when ``threshold`` is
         omitted, not allowed with it.
     p
-        Probability of the default gate (0.99).
+        Probability of the default gate (``None``: 0.99); only with ``sigma_px`` (an explicit
+        ``threshold`` has no probability, and ``p`` is then refused rather than ignored).
 
     Returns
     -------
@@ -152,17 +153,21 @@ def associate(dist, threshold=None, *, rule: str = "paper", sigma_px=None,
     Raises
     ------
     TypeError
-        If neither or both of ``threshold`` and ``sigma_px`` are given.
+        If neither or both of ``threshold`` and ``sigma_px`` are given, or ``p`` is given
+        with ``threshold``.
     """
     d = _check_dist(dist)
     if threshold is None:
         if sigma_px is None:
             raise TypeError("associate needs threshold (px) or sigma_px (the spread of a true "
                             "pair's distance, for the default χ² gate)")
-        t = chi2_gate(sigma_px, p)
+        t = chi2_gate(sigma_px, DEFAULT_GATE_PROBABILITY if p is None else p)
     else:
         if sigma_px is not None:
             raise TypeError("give threshold or sigma_px, not both")
+        if p is not None:
+            raise TypeError("p sets the probability of the default χ² gate (with sigma_px); "
+                            "it has no meaning with an explicit threshold")
         t = _check_threshold(threshold)
     check_choice(rule, "rule", ASSOCIATION_RULES)
     if d.size == 0:

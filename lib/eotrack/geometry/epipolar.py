@@ -100,10 +100,21 @@ def epipolar_lines(F, pts1) -> np.ndarray:
     return _lines(_check_F(F), as_points(pts1, "pts1"))
 
 
+#: relative size of (a, b) = (F p)₁,₂ (against max|F|·max|p|) below which a point counts as AT the epipole: there the
+#: line is round-off (|(a, b)| ~ ε‖F‖‖p‖) and any distance would be arbitrary. 1e-12 is ~4500
+#: ulp; it flags only points within ~1e-9 px of the epipole.
+EPIPOLE_RTOL = 1e-12
+
+
+def _epipole_limit(f: np.ndarray, p: np.ndarray) -> float:
+    return EPIPOLE_RTOL * float(np.abs(f).max()) * (float(np.abs(p).max()) + 1.0)
+
+
 def _lines(f: np.ndarray, p: np.ndarray) -> np.ndarray:
     lines = p @ f[:, :2].T + f[:, 2]
     n = np.hypot(lines[:, 0], lines[:, 1])
-    if not n.all():
+    lim = _epipole_limit(f, p) if len(n) else np.nan
+    if math.isfinite(lim) and n.min() <= lim:
         raise ValueError("pts1 contains the epipole of image 1: its epipolar line is undefined")
     return lines / n[:, None]
 
@@ -112,7 +123,9 @@ def epipolar_distances(F, pts1, pts2) -> np.ndarray:
     """Eq. (8): distance (px) of every ``pts2`` point from the epipolar line of every ``pts1`` point.
 
     ``d[i, j] = |p₂ⱼᵀ F p₁ᵢ| / sqrt(a_i² + b_i²)`` with ``F p₁ᵢ = (a_i, b_i, c_i)``; vectorised,
-    invariant to the scale of ``F``.
+    invariant to the scale of ``F``. A ``pts1`` point at the epipole (``|(a, b)|`` at
+    round-off level, :data:`EPIPOLE_RTOL`) has no epipolar line: ValueError, not arbitrary
+    numbers.
 
     Parameters
     ----------
@@ -150,7 +163,11 @@ def epipolar_distances(F, pts1, pts2) -> np.ndarray:
     h[2] = 1.0
     both = F @ h
     lines = both[:, :n1]
-    lines /= np.hypot(lines[0], lines[1])  # a point at the epipole gives inf/NaN: see below
+    nrm = np.hypot(lines[0], lines[1])
+    lim = _epipole_limit(F, pts1)  # NaN/inf inputs: not finite, left to the check below
+    if math.isfinite(lim) and nrm.min() <= lim:  # at the epipole: no line (exact/round-off)
+        raise ValueError("pts1 contains the epipole of image 1: its epipolar line is undefined")
+    lines /= nrm
     flat = both.ravel()
     if not math.isfinite(flat @ flat):  # re-validate: raises with the right message
         _check_F(F)
