@@ -162,3 +162,53 @@ def test_bad_assignments_and_measurements_raise():
     with pytest.raises(TypeError, match="z must be a numeric"):
         ours.update("ab")
     assert np.all(np.isfinite(ours.x))
+
+
+def test_column_state_from_filterpy_is_flattened_and_matches_filterpy():
+    """FilterPy's x is a (d, 1) column: assigning one must not broadcast (2,) − (2, 1) into a
+    (4, 2) state (review of issue 28, finding 3)."""
+    ours, fp = _pair()
+    col = np.array([[0.0], [1.0], [0.0], [-1.0]])
+    ours.x = col
+    fp.x = col.copy()
+    assert ours.x.shape == (4,)
+    for z in ([1.0, 2.0], [1.3, 1.6], [1.1, 1.4]):
+        ours.predict()
+        fp.predict()
+        assert ours.update(np.array(z)) == FilterMode.UPDATE
+        fp.update(np.array(z))
+        assert ours.x.shape == (4,)
+        np.testing.assert_allclose(ours.x, fp.x[:, 0], atol=1e-12)
+        np.testing.assert_allclose(ours.P, fp.P, atol=1e-12)
+
+
+@pytest.mark.parametrize("bad", [np.zeros((4, 2)), np.zeros(3), np.zeros((1, 4)), [np.nan] * 4])
+def test_bad_state_assignment_raises(bad):
+    ours, _ = _pair()
+    with pytest.raises(ValueError, match="x"):
+        ours.x = bad
+
+
+@pytest.mark.parametrize("bad", [np.zeros((3, 3)), -np.eye(4), np.triu(np.ones((4, 4))),
+                                 np.full((4, 4), np.nan)])
+def test_bad_covariance_assignment_raises(bad):
+    ours, _ = _pair()
+    with pytest.raises(ValueError, match="P"):
+        ours.P = bad
+
+
+@pytest.mark.parametrize("name", ["F", "H", "Q", "R", "x", "P", "x_prior", "P_prior"])
+@pytest.mark.parametrize("cls", [KalmanFilter, ConfidenceKalmanFilter])
+def test_in_place_edits_cannot_bypass_validation(name, cls):
+    F, H = constant_acceleration_model(0.2)
+    kf = cls(F, H, np.eye(6) * 0.1, 0.5 * np.eye(2), np.zeros(6), np.eye(6))
+    kf.predict()
+    kf.update(np.array([0.1, -0.1]))
+    arr = getattr(kf, name)
+    before = arr.copy()
+    with pytest.raises(ValueError, match="read-only"):
+        arr[(0,) * arr.ndim] = -5.0
+    np.testing.assert_array_equal(getattr(kf, name), before)
+    if name in ("Q", "P"):                 # a whole new array is validated
+        with pytest.raises(ValueError, match="semi-definite"):
+            setattr(kf, name, -np.eye(6))

@@ -26,16 +26,19 @@ from eotrack.validation import check_choice
 
 __all__ = [
     "EXPLORATORY_CONFIDENCE",
+    "FIRST_COMMIT_CONFIDENCE",
     "NO_GATE_CAP_PX",
     "N_SEEDS",
-    "PREREGISTERED_CONFIDENCE",
     "SCENARIO_LABELS",
+    "SETTINGS_PROVENANCE",
     "SLUG",
+    "STATUS_CONFIDENCE",
     "TITLE",
     "VARIANTS",
     "VARIANT_PARTS",
     "AblationConfig",
     "exploratory_config",
+    "first_commit_config",
     "make_filter",
     "singer_parameters",
 ]
@@ -49,17 +52,46 @@ TITLE = ("Sheng Y.S., Adaptive anti-occlusion star tracking algorithm for ships 
 #: the notebook's statuses are the REPORT's): 20, the statistics rule's minimum for an ordering
 N_SEEDS = 20
 
-#: an association gate "without cap" (the first committed setting: the gate grew with S freely)
+#: an association gate "without cap" (the experiment's first commit, 9ea01e8: the gate grew
+#: with S freely; the 60 px and 30 px caps came 15 and 35 minutes later, 7ea54ea and c084fce)
 NO_GATE_CAP_PX = 1.0e6
 
-#: confidence-filter settings fixed BEFORE any result was seen (the first committed defaults:
-#: γ = 3 is the 99 % χ²(2) value rounded as the paper's "γ" suggests, R within [0.01, 25] px²,
-#: q_a within [0.25, 16]× its sea-state prior); these decide the claims' statuses
-PREREGISTERED_CONFIDENCE = ConfidenceConfig(gamma=3.0, r_bounds=(0.01, 25.0),
-                                            q_bounds_ratio=(0.25, 16.0))
-#: the settings adopted AFTER inspecting track losses (γ = 5, R ≤ 1 px², q_a in [1, 16]×, with a
-#: 30 px gate cap and hold-after-5 in :func:`exploratory_config`): exploratory evidence only
+#: the confidence-filter settings that decide the statuses: γ = 3, R within [0.01, 25] px²,
+#: q_a within [0.25, 16]× its sea-state prior. They were FIXED ON 2026-12-01 (66bec00) WITH
+#: RESULTS SEEN — no setting of this experiment was fixed before a result was looked at (see
+#: :data:`SETTINGS_PROVENANCE`). R and q_a come from ``ConfidenceConfig``'s defaults in 6d355e1
+#: (the WRANSAC commit, before this experiment existed); γ = 3 from the experiment's first
+#: commit 9ea01e8, which itself ran with R ≤ 1 px² and q_a ≤ 100× (:data:`FIRST_COMMIT_CONFIDENCE`)
+STATUS_CONFIDENCE = ConfidenceConfig(gamma=3.0, r_bounds=(0.01, 25.0),
+                                     q_bounds_ratio=(0.25, 16.0))
+#: the confidence settings of the experiment's first commit (9ea01e8, 2026-11-22 03:05):
+#: γ = 3, R within [0.01, 1] px², q_a within [0.25, 100]× (run as a comparison, never a status)
+FIRST_COMMIT_CONFIDENCE = ConfidenceConfig(gamma=3.0, r_bounds=(0.01, 1.0),
+                                           q_bounds_ratio=(0.25, 100.0))
+#: the tuned settings (γ = 5, R ≤ 1 px², q_a in [1, 16]×, with a 30 px gate cap and
+#: hold-after-5 in :func:`exploratory_config`), adopted after inspecting track losses
+#: (7ea54ea, c084fce): exploratory evidence only
 EXPLORATORY_CONFIDENCE = ConfidenceConfig()
+
+#: where each setting that decides a status comes from (parameter -> (value, commit, note)).
+#: Every one was in place, or changed, while results were being looked at.
+SETTINGS_PROVENANCE: dict[str, tuple[str, str, str]] = {
+    "γ": ("3", "9ea01e8 (11-22 03:05)",
+          "first experiment commit; γ = 5 from c084fce (03:40) to 66bec00 (12-01), then 3 again"),
+    "R bounds": ("[0.01, 25] px²", "6d355e1 (11-22 02:56)",
+                 "ConfidenceConfig default before the experiment existed; 9ea01e8 ran with "
+                 "[0.01, 1]; restored in 66bec00 (12-01)"),
+    "q_a bounds": ("[0.25, 16]×", "6d355e1 (11-22 02:56)",
+                   "as R; 9ea01e8 ran with [0.25, 100]×, 7ea54ea [1, 100]×, c084fce [1, 16]×"),
+    "gate cap": ("none", "9ea01e8 (11-22 03:05)",
+                 "60 px in 7ea54ea, 30 px in c084fce; removed again in 66bec00 (12-01)"),
+    "hold": ("none", "9ea01e8 (11-22 03:05)", "hold-after-5 in c084fce; removed in 66bec00"),
+    "R₀, gate, σ-gate, cv_q": ("0.25 px², 10 px, 4σ, 400", "9ea01e8 (11-22 03:05)",
+                               "unchanged since the first experiment commit"),
+    "centroid_grow": ("2 px", "25d44bc (11-30)", "added after results were seen"),
+    "robust_roi": ("True", "d0dd01b (11-30)",
+                   "'robust ROI, regenerated report': added after results were seen"),
+}
 
 VARIANTS = ("Baseline", "BEAK-ST-GT", "BEAK-ST-SKF", "BEAK-ST")
 #: variant -> (extraction method, filter kind)
@@ -86,10 +118,14 @@ class AblationConfig:
     gate_px, gate_sigma, gate_max_px, hold_after
         Association gate and track maintenance (see
         :func:`eotrack.tracking.kalman.track_nearest`); continuity counts frames whose estimate
-        lies within ``gate_px`` of the truth. The defaults are the pre-registered ones (no gate
-        cap, no hold); :func:`exploratory_config` gives the tuned 30 px cap and hold-after-5.
+        lies within ``gate_px`` of the truth. The defaults are the status settings (no gate
+        cap, no hold; fixed on 2026-12-01 with results seen, see :data:`SETTINGS_PROVENANCE`);
+        :func:`exploratory_config` gives the tuned 30 px cap and hold-after-5.
     r_px2
         Initial measurement variance R (pixels²) of every filter.
+    q_scale
+        Factor on the Singer process noise ``Q`` of the constant-acceleration filters (1: the
+        sea-state prior; other values are beyond-the-paper comparisons).
     prior_sea_state
         Sea state whose sway spectrum initialises the Singer ``q_a`` (all scenarios — the filter
         does not know the scenario).
@@ -114,24 +150,37 @@ class AblationConfig:
     gate_max_px: float = NO_GATE_CAP_PX
     hold_after: int | None = None
     r_px2: float = 0.25
+    q_scale: float = 1.0
     prior_sea_state: int = 3
     singer_period_s: float = 9.0
     cv_q: float = 400.0
     snr_ref: float = 8.0
     flux_tol: float = 0.7
     extraction: ExtractionConfig = field(default_factory=ExtractionConfig)
-    confidence: ConfidenceConfig = PREREGISTERED_CONFIDENCE
+    confidence: ConfidenceConfig = STATUS_CONFIDENCE
     seed: int = 20260404
 
 
 def exploratory_config(cfg: AblationConfig | None = None) -> AblationConfig:
-    """``cfg`` (default: the pre-registered :class:`AblationConfig`) with the settings adopted
+    """``cfg`` (default: the status settings of :class:`AblationConfig`) with the settings adopted
     after inspecting results — γ = 5, R ≤ 1 px², q_a in [1, 16]× prior, a 30 px gate cap and
     hold-after-5. Results under it are exploratory and never decide a status."""
     cfg = AblationConfig() if cfg is None else cfg
     if not isinstance(cfg, AblationConfig):
         raise TypeError(f"cfg must be an AblationConfig, got {type(cfg).__name__}")
     return replace(cfg, confidence=EXPLORATORY_CONFIDENCE, gate_max_px=30.0, hold_after=5)
+
+
+def first_commit_config(cfg: AblationConfig | None = None) -> AblationConfig:
+    """``cfg`` with the filter settings of the experiment's first commit (9ea01e8): γ = 3,
+    R within [0.01, 1] px², q_a within [0.25, 100]×, no gate cap, no hold. (Its extraction —
+    no region growth, no robust ROI — is not re-run: the comparison keeps ``cfg``'s centroids.)
+    Results under it are a comparison and never decide a status."""
+    cfg = AblationConfig() if cfg is None else cfg
+    if not isinstance(cfg, AblationConfig):
+        raise TypeError(f"cfg must be an AblationConfig, got {type(cfg).__name__}")
+    return replace(cfg, confidence=FIRST_COMMIT_CONFIDENCE, gate_max_px=NO_GATE_CAP_PX,
+                   hold_after=None)
 
 
 def singer_parameters(sensor: SensorConfig, cfg: AblationConfig) -> tuple[float, float, float]:
@@ -165,7 +214,7 @@ def make_filter(kind: str, x0: np.ndarray, sensor: SensorConfig, cfg: AblationCo
         P0 = np.diag([1.0, 1.0, v2, v2])
         return KalmanFilter(F, H, Q, R, np.r_[x0[:2], 0.0, 0.0], P0)
     F, H = constant_acceleration_model(dt)
-    Q = singer_process_noise(dt, alpha, sigma_w)
+    Q = cfg.q_scale * singer_process_noise(dt, alpha, sigma_w)
     P0 = np.diag([1.0, 1.0, v2, v2, a2, a2])
     xx = np.r_[x0[:2], np.zeros(4)]
     if kind == "kf":

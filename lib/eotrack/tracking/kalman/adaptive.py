@@ -214,8 +214,8 @@ class ConfidenceKalmanFilter(KalmanFilter):
 
     @property
     def Q_base(self) -> np.ndarray:
-        """The current (adapted) process noise; the same array as ``self.Q``."""
-        return self._Q
+        """The current (adapted) process noise; the same values as ``self.Q`` (read-only)."""
+        return self.Q
 
     @Q_base.setter
     def Q_base(self, value: Any) -> None:
@@ -240,7 +240,7 @@ class ConfidenceKalmanFilter(KalmanFilter):
         self.k_adapt = 0
         self.last_confidence = np.nan
         self.last_mahalanobis = np.nan
-        self._P_prev = self.P.copy()
+        self._P_prev = self._P.copy()
         self._F_step = self._F
 
     def predict(self, F: Any = None, Q: Any = None) -> np.ndarray:
@@ -256,12 +256,12 @@ class ConfidenceKalmanFilter(KalmanFilter):
         F_ = self._F if F is None else self._check_F(F, "F")
         Q_ = self._Q if Q is None else self._check_Q(Q, "Q")
         grow = min(1.0 + cfg.q_growth * self.n_missed, cfg.q_growth_max)
-        self._P_prev = self.P
+        self._P_prev = self._P
         self._F_step = F_
-        self.x = F_ @ self.x
-        self.P = F_ @ self.P @ F_.T + grow * Q_
-        self.x_prior = self.x
-        self.P_prior = self.P
+        self._x = F_ @ self._x
+        self._P = F_ @ self._P @ F_.T + grow * Q_
+        self._x_prior = self._x
+        self._P_prior = self._P
         return self.x
 
     def confidence(self, z: np.ndarray, c_img: float = 1.0) -> tuple[float, float]:
@@ -281,7 +281,7 @@ class ConfidenceKalmanFilter(KalmanFilter):
         if z is None:
             self.n_missed += 1
             self.last_confidence = np.nan
-            self.P = 0.5 * (self.P + self.P.T)
+            self._P = 0.5 * (self._P + self._P.T)
             return FilterMode.PREDICT
         c, dm = self.confidence(z, c_img)
         self.last_confidence, self.last_mahalanobis = c, dm
@@ -289,7 +289,7 @@ class ConfidenceKalmanFilter(KalmanFilter):
         tau_h = cfg.tau_high * self.c_smooth
         tau_l = cfg.tau_low * self.c_smooth
         if c >= tau_h:
-            P_prior = self.P
+            P_prior = self._P
             e, K = self._update(z, self._R)
             if cfg.adaptive_noise:
                 d = sage_husa_weight(self.k_adapt, cfg.forgetting)
@@ -297,7 +297,7 @@ class ConfidenceKalmanFilter(KalmanFilter):
                 # every step would cost a Cholesky per frame
                 self._R, self._Q = sage_husa_update(
                     self._R, self._Q, e=e, K=K, H=self._H, F=self._F_step, P_prior=P_prior,
-                    P_post=self.P, P_prev=self._P_prev, d=d, safeguard=cfg.safeguard,
+                    P_post=self._P, P_prev=self._P_prev, d=d, safeguard=cfg.safeguard,
                     r_bounds=cfg.r_bounds, q_structure=self._q_mask, q_bounds=self._q_bounds)
                 self.k_adapt += 1
             self.n_missed = 0
@@ -307,6 +307,6 @@ class ConfidenceKalmanFilter(KalmanFilter):
             self.n_missed = 0
             return FilterMode.INFLATED
         self.n_missed += 1
-        self.P = 0.5 * (self.P + self.P.T)
+        self._P = 0.5 * (self._P + self._P.T)
         return FilterMode.PREDICT
 

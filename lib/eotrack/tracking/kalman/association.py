@@ -131,8 +131,9 @@ def track_nearest(filt: KalmanFilter, detections: Sequence[np.ndarray], *,
         modes[k] = filt.update(z, ci)
         missed = missed + 1 if modes[k] == FilterMode.PREDICT else 0
         if hold is not None and missed >= hold:
-            filt.x = filt.x.copy()
-            filt.x[m:] = 0.0
+            x_hold = filt.x.copy()
+            x_hold[m:] = 0.0
+            filt.x = x_hold
         if filt.adaptive and z is not None:
             conf[k] = filt.last_confidence
         xs[k] = filt.x
