@@ -59,7 +59,7 @@ def _wls(a, y, w):
 
 
 RIGHT = {
-    "wransac.1": lambda: (5 + 3) * (5 - 2) / (5 * (5 + 1)),
+    "wransac.1": lambda: (-1 + np.sqrt(241)) / 2,  # ν² + ν − 60 = 0
     "wransac.2": lambda: _gm(60, 45),
     "wransac.3": lambda: _within(10, "wransac_hypothesis", 20.0),
     "wransac.4": lambda: float(f_dist.cdf(1 / _ratio(), 19, 19)),
@@ -68,8 +68,12 @@ RIGHT = {
 
 # the wrong answers a student would give, each with its mistake
 WRONG = [
-    ("wransac.1", lambda: 1.0),  # "OLS is already optimal"
-    ("wransac.1", lambda: (3 + 3) * (3 - 2) / (3 * (3 + 1))),  # ν = 3 (the notebook's) not 5
+    ("wransac.1", lambda: 0.8),  # the fraction at ν = 5, not a ν
+    ("wransac.1", lambda: 0.9),  # the fraction itself
+    ("wransac.1", lambda: 7.0),  # rounded down
+    ("wransac.1", lambda: 8.0),  # the smallest integer ν above it
+    ("wransac.1", lambda: (-1 - np.sqrt(241)) / 2),  # the other root
+    ("wransac.1", lambda: 5.0),  # the ν of the old exercise
     ("wransac.2", lambda: 3.0),  # σ itself: forgets the extrapolation leverage
     ("wransac.2", lambda: _gm(80, 45)),  # ignores the clouds: all 80 points inliers
     ("wransac.2", lambda: _gm(80, 72)),  # the all-inlier 72-min value printed in section 4.7
@@ -89,7 +93,7 @@ WRONG = [
 ]
 
 BAD = {
-    "wransac.1": ("0.8", TypeError),
+    "wransac.1": ("7.26", TypeError),
     "wransac.2": (float("nan"), ValueError),
     "wransac.3": ([0.5], TypeError),
     "wransac.4": ("0.1", TypeError),

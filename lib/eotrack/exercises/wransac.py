@@ -70,19 +70,25 @@ def _unpaired_reversal_probability() -> float:
     return float(f.cdf(1.0 / _paired_ratio_72_dec(), 19, 19))
 
 
-def _student_efficiency_5():
+def _nu_at_efficiency_09() -> float:
+    from scipy.optimize import brentq
+
     from eotrack.experiments import wransac as W
 
-    return W.student_t_efficiency(5.0)
+    return float(brentq(lambda nu: W.student_t_efficiency(nu) - 0.9, 2.0 + 1e-9, 1e6,
+                        xtol=1e-12))
 
 
 register("wransac.1", NumericAnswer(
-    "Derivation. For inlier noise that is Student-t with ν = 5 degrees of freedom and standard "
+    "Derivation. For inlier noise that is Student-t with ν degrees of freedom and standard "
     "deviation σ, derive the Cramér–Rao bound on the variance of any unbiased predictor as a "
-    "fraction of the OLS (Gauss–Markov) variance. Give the fraction.",
-    expected=_student_efficiency_5, rtol=1e-3,
+    "fraction of the OLS (Gauss–Markov) variance, as a function of ν. At what ν (a real "
+    "number, not rounded) is that fraction 0.9, i.e. could a perfect estimator cut the "
+    "variance by only a tenth?",
+    expected=_nu_at_efficiency_09, rtol=1e-3,
     hint="Fisher information of a t_ν location with scale s is (ν+1)/((ν+3)s²); the variance "
-         "of t_ν is s²ν/(ν−2) — set it to σ²."))
+         "of t_ν is s²ν/(ν−2) — set it to σ². The fraction is a ratio of quadratics in ν: "
+         "setting it to 0.9 gives a quadratic equation; keep the root above 2."))
 
 register("wransac.2", NumericAnswer(
     "Computation. Clouds hide the last 20 of the 80 observations of the main scenario, so only "

@@ -39,11 +39,16 @@ from .figures import (
 from .orbit import (
     ORBIT_CRITERION,
     ORBIT_METHODS,
+    ORBIT_SEEDS,
+    PAIRED_RATIO,
     SINUSOID_METHODS,
     absolute_ra,
     orbit_comparison,
     orbit_criterion,
     orbit_inputs,
+    orbit_seed_study,
+    read_orbit_study,
+    write_orbit_study,
 )
 from .scenario import (
     ARCSEC_PER_RAD,
@@ -112,8 +117,26 @@ TITLE = ("Yan L.J., Huang Y.M., Zhang Y.H., Tang T., Xia Y.X. Research on the ap
 STUDENT_METHODS = ("lsq", "ransac", *READING_METHODS, "ideal")
 #: The budgets and methods of the U sweep (the Explore widget filters its result).
 BUDGETS = (3, 5, 10, 30, 100, 300)
-__all__ += ["BUDGETS", "BUDGET_METHODS", "ORBIT_CRITERION", "ORBIT_METHODS", "SINUSOID_METHODS",
-            "absolute_ra", "orbit_comparison", "orbit_criterion", "orbit_inputs", "orbit_text"]
+__all__ += [
+    "BUDGETS",
+    "BUDGET_METHODS",
+    "ORBIT_CRITERION",
+    "ORBIT_METHODS",
+    "ORBIT_SEEDS",
+    "ORBIT_STUDY_FILE",
+    "PAIRED_RATIO",
+    "SINUSOID_METHODS",
+    "absolute_ra",
+    "orbit_comparison",
+    "orbit_criterion",
+    "orbit_inputs",
+    "orbit_seed_study",
+    "orbit_text",
+    "read_orbit_study",
+    "write_orbit_study",
+]
+#: The orbit study written by the committed full run (``make repro``), read by the notebook.
+ORBIT_STUDY_FILE = "orbit_study.json"
 BUDGET_METHODS = ("lsq", "ransac", "wransac_hypothesis", "wransac_refit", "wransac_iterated",
                   "msac", "huber_ransac", "cauchy_ransac", "ideal")
 
@@ -244,37 +267,85 @@ def _variants(ratios: pd.DataFrame, default: str) -> dict[str, tuple[float, floa
     return out
 
 
-def orbit_text(table: pd.DataFrame) -> str:
-    """The orbit-fit comparison in words: the criterion, its outcome and the recommendation."""
+def orbit_text(table: pd.DataFrame, seeds: pd.DataFrame | None = None, *,
+               sigma_arcsec: float = 3.0) -> str:
+    """The orbit-fit comparison in words: the criterion, its outcome, why, and the advice.
+
+    ``table`` is :func:`orbit_comparison` output; ``seeds`` (optional) the
+    :func:`orbit_seed_study` over independent root seeds. Every number is read from them.
+    """
     ok, crit = orbit_criterion(table)
     drift = crit[crit["drifting"]]
     worst, med = table["worst"], table["median run"]
     sin_cols = [m for m in worst.columns if m not in ("orbit", "ideal")]
     ratio_all = worst[sin_cols].min(axis=1) / worst["orbit"]
+    ratio_med = med[sin_cols].min(axis=1) / med["orbit"]
     ms = table["ms per fit"]
+
+    def name(k: str) -> str:
+        return k.split(" (")[0]
+
     txt = (f"Criterion (stated before the run): {ORBIT_CRITERION} Outcome: "
            + ("**met**" if ok else "**not met**") + " — " + "; ".join(
-               f"{k.split(' (')[0]}: best sinusoid {METHOD_LABELS.get(r['best sinusoid predictor'], r['best sinusoid predictor'])} "
+               f"{name(k)}: best sinusoid {METHOD_LABELS.get(r['best sinusoid predictor'], r['best sinusoid predictor'])} "
                f"{r['its worst (″)']:.0f}″ vs orbit fit {r['orbit fit worst (″)']:.0f}″ "
-               f"(×{r['ratio']:.1f}; median run ×"
-               f"{med[sin_cols].min(axis=1)[k] / med.loc[k, 'orbit']:.1f})"
-               for k, r in drift.iterrows())
-           + f". On the other cases the ratio (best sinusoid predictor's worst error over the "
-           f"orbit fit's) is {ratio_all[~crit['drifting']].min():.1f}–"
-           f"{ratio_all[~crit['drifting']].max():.1f}. "
-           f"Time per fit: orbit {ms['orbit'].mean():.0f} ms (Gauss IOD on a few triplets + "
-           f"robust least squares, two-body), RANSAC {ms['ransac'].mean():.1f} ms, WRANSAC "
-           f"{ms['wransac_hypothesis'].mean():.1f} ms (both coordinates). ")
-    if ok and (ratio_all > 1).all():
+               f"(×{r['ratio']:.1f})" for k, r in drift.iterrows()) + ". ")
+    if seeds is not None and len(seeds):
+        parts = []
+        for k, g in seeds.groupby("case", sort=False):
+            share = g["met"].mean()
+            committed = bool(drift.loc[k, "ratio"] >= PAIRED_RATIO) if k in drift.index else None
+            fragile = committed is not None and (share not in (0.0, 1.0)
+                                                 or bool(share) != committed)
+            parts.append(f"{name(k)} meets it on {int(g['met'].sum())} of {len(g)} (ratio "
+                         f"{g['ratio'].min():.1f}–{g['ratio'].max():.1f}, orbit fit's worst "
+                         f"{g['orbit fit worst (″)'].min():.0f}–"
+                         f"{g['orbit fit worst (″)'].max():.0f}″)"
+                         + (" — **fragile**: the committed run's outcome is one draw" if fragile
+                            else ""))
+        txt += (f"Over {seeds['root seed'].nunique()} independent root seeds (the seeds of "
+                "`--seeds 5`, the same runs per case): " + "; ".join(parts) + ". ")
+    # why the max-over-runs statistic misses: tail of a noise-limited fit vs a biased model
+    p90 = table["p90 run"] if "p90 run" in table.columns.get_level_values(0) else None
+    why = []
+    for k in drift.index:
+        o_med, o_max = med.loc[k, "orbit"], worst.loc[k, "orbit"]
+        best = drift.loc[k, "best sinusoid predictor"]
+        s_med, s_max = med.loc[k, best], worst.loc[k, best]
+        w = (f"{name(k)}: orbit fit per-run worst error median {o_med:.1f}″"
+             + (f", 90th percentile {p90.loc[k, 'orbit']:.1f}″" if p90 is not None else "")
+             + f", maximum {o_max:.1f}″ (max/median ×{o_max / o_med:.1f}); "
+             f"{METHOD_LABELS.get(best, best)} median {s_med:.0f}″ "
+             f"({s_med / sigma_arcsec:.0f}σ), max/median ×{s_max / s_med:.1f}")
+        if ("paired", "median ratio") in table.columns:
+            w += (f"; paired per run, best sinusoid over orbit: median "
+                  f"×{table.loc[k, ('paired', 'median ratio')]:.1f}, ≥ {PAIRED_RATIO:g}× in "
+                  f"{100 * table.loc[k, ('paired', 'share ≥ 5×')]:.0f} % of runs")
+        why.append(w)
+    if why:
+        txt += ("Why the worst-over-runs statistic decides it: the orbit fit is noise-limited, so "
+                "its maximum over runs is set by a continuous tail of its error distribution, "
+                "while the sinusoid predictors are bias-limited (the model is wrong for a "
+                "drifting object) and their maximum stays close to their median — " + "; ".join(why)
+                + " (the paired ratio is a supplementary statistic, not the criterion). ")
+    others = ~crit["drifting"]
+    if others.any():
+        txt += (f"On the other (geostationary) cases the orbit fit is about "
+                f"{ratio_med[others].mean():.0f}× better: worst-error ratio "
+                f"{ratio_all[others].min():.1f}–{ratio_all[others].max():.1f}, median-run ratio "
+                f"{ratio_med[others].min():.1f}–{ratio_med[others].max():.1f} — it has 6 free "
+                "parameters for both angles instead of 4 per angle, and the dynamics tie the "
+                "two angles and the range together. ")
+    txt += (f"Time per fit: the orbit fit takes about {ms['orbit'].mean() / ms['ransac'].mean():.0f}× "
+            "a RANSAC fit of both coordinates (Gauss IOD on a few triplets + robust least squares, "
+            f"two-body; here {ms['orbit'].mean():.0f} ms vs {ms['ransac'].mean():.1f} ms, WRANSAC "
+            f"{ms['wransac_hypothesis'].mean():.1f} ms — absolute times depend on the machine "
+            "and its load). ")
+    if (ratio_all > 1).all():
         txt += ("Recommendation: predict through a shadow or cloud gap from a robustly fitted "
-                "orbit; among the sinusoid-model estimators the choice matters less than the "
-                "model.")
-    else:
-        txt += ("Where the criterion fails, the orbit fit's worst run is noise-limited (an "
-                "angles-only fit of a 2-h arc sees the range only through the station's "
-                "parallax, so a few runs extrapolate badly) while the sinusoid model's error on "
-                "a slowly drifting object is only a few times the noise; the median-run ratios "
-                "show the typical margin.")
+                "orbit — it has the smallest worst error on every case"
+                + ("" if ok else ", though not the pre-stated 5× margin on every drifting case")
+                + "; among the sinusoid-model estimators the choice matters less than the model.")
     return txt
 
 
@@ -313,6 +384,17 @@ def reproduce(*, quick: bool = False, runner: TrialRunner | None = None,
     orbit = orbit_comparison(cfg, n_runs=5 if quick else n_side // 2, runner=runner,
                              main_label=f"NORAD {cfg.norad_id} (main), {cfg.station[0]:g}°, "
                              f"{cfg.station[1]:g}°E")
+    # the criterion over the root seeds of --seeds 5 (the committed run only; quick: a smoke run)
+    orbit_seeds = None
+    if seed is None:
+        orbit_seeds = orbit_seed_study(cfg, seeds=ORBIT_SEEDS[:1] if quick else ORBIT_SEEDS,
+                                       n_runs=2 if quick else n_side // 2, runner=runner)
+        if not quick:  # read by the notebook (the study takes about a minute)
+            from eotrack.repro import papers_repro_dir
+
+            out = papers_repro_dir() / SLUG
+            out.mkdir(parents=True, exist_ok=True)
+            write_orbit_study(out / ORBIT_STUDY_FILE, orbit, orbit_seeds, n_runs=n_side // 2)
     table_paper = claims["wransac.table1"].paper["values"]
     t1 = ("sin", "lsq", "ransac", "wransac", "ideal")
     tables = {
@@ -333,6 +415,9 @@ def reproduce(*, quick: bool = False, runner: TrialRunner | None = None,
         "Beyond — orbit fit vs sinusoid predictors: worst and median-run 72-min |error| (″), "
         "ms per fit (common noise and outliers)": orbit,
     }
+    if orbit_seeds is not None:
+        tables["Beyond — orbit criterion on the drifting cases over independent root seeds"] = (
+            orbit_seeds.set_index(["case", "root seed"]))
     figs = {}
     specs = [
         ("fig1_min_samples", lambda ax: plot_min_samples(paper=claims["wransac.fig1"].paper,
@@ -386,7 +471,7 @@ def reproduce(*, quick: bool = False, runner: TrialRunner | None = None,
         "Student-t noise are exploratory (2 × 3 = 6 cells tried): cells whose interval lies "
         f"below 1 (the paper's ordering): {which}.\n\n"
         f"**Generalisation.** {recommendation(worst)}\n\n"
-        f"**Orbit fit (beyond the paper).** {orbit_text(orbit)}\n\n"
+        f"**Orbit fit (beyond the paper).** {orbit_text(orbit, orbit_seeds, sigma_arcsec=cfg.sigma_arcsec)}\n\n"
         "Table 1's coordinate is not stated in the paper; we report Dec and RA (RA as the "
         "drift against the sidereal rotation, arcsec of RA).")
     return Reproduction(slug=SLUG, title=TITLE, claims=rows, tables=tables, figures=figs,
@@ -395,7 +480,8 @@ def reproduce(*, quick: bool = False, runner: TrialRunner | None = None,
                               "threshold_sensitivity": sens, "budget": budget,
                               "budget_errors": budget_err, "budgets": BUDGETS,
                               "budget_methods": BUDGET_METHODS, "correlations": corr,
-                              "generalisation": gen, "worst": worst, "orbit": orbit},
+                              "generalisation": gen, "worst": worst, "orbit": orbit,
+                              "orbit_seeds": orbit_seeds},
                         settings={**dict(asdict(cfg)), "n_runs_used": n_runs, "quick": quick,
                                   "root seed": seed,
                                   "U": cfg.n_hypotheses, "hypotheses drawn": cfg.n_draws,

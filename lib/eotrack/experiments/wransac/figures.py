@@ -331,21 +331,61 @@ def plot_eclipse_season(sc: Scenario, *, ax: plt.Axes | None = None) -> plt.Axes
     return ax
 
 
+#: Extra bar colours for methods whose house colours coincide (bars differ by colour, not by
+#: hatch alone, so the figure reads in grey too).
+_BAR_SPARE = ("#0072B2", "#882255", "#117733", "#999999", "#44AA99", "#332288", "#DDCC77")
+
+
+def _bar_styles(names: list[str]) -> list:
+    """House styles with a distinct colour per bar series (first user of a colour keeps it)."""
+    from dataclasses import replace as _replace
+
+    styles = _styles(names)
+    used = set()
+    spare = iter(c for c in _BAR_SPARE if c not in {st.color for st in styles})
+    out = []
+    for st in styles:
+        if st.color in used:
+            st = _replace(st, color=next(spare))
+        used.add(st.color)
+        out.append(st)
+    return out
+
+
+def _case_tick(label: str) -> str:
+    """Tick label of a case: its NORAD id, and "drifting" on a second line where it drifts."""
+    words = str(label).replace("NORAD ", "").split()
+    return words[0] + ("\n(drifting)" if "drifting" in str(label) else "")
+
+
 def plot_generalisation(table: pd.DataFrame, *, ax: plt.Axes | None = None,
                         title: str = "Generalisation") -> plt.Axes:
-    """Worst 72-min error per method and scenario (log scale); ticks: the case's NORAD id."""
+    """Worst 72-min error per method and scenario (log scale); ticks: the case's NORAD id.
+
+    Drifting cases are marked on their tick. With an ``"orbit"`` column, each drifting case
+    also gets the orbit criterion's mark: 1/5 of the best sinusoid predictor's worst error
+    (the orbit bar must reach below it).
+    """
     ax = get_ax(ax, figsize=(8, 4))
     worst = table["worst"]
     x = np.arange(len(worst.index))
     k = len(worst.columns)
-    for i, (m, st) in enumerate(zip(worst.columns, _styles(list(worst.columns)), strict=True)):
+    for i, (m, st) in enumerate(zip(worst.columns, _bar_styles(list(worst.columns)), strict=True)):
         ax.bar(x + (i - k / 2 + 0.5) * 0.8 / k, worst[m], width=0.8 / k,
                label=METHOD_LABELS.get(m, m), **st.bar())
     ax.set_yscale("log")
     log_axis(ax, "y")
-    ax.set_xticks(x, [str(c).split(" (")[0].split(",")[0].replace("NORAD ", "")
-                      for c in worst.index])
+    ax.set_xticks(x, [_case_tick(c) for c in worst.index])
     ax.axhline(27, ls="--", c="k", lw=0.8, label="27″ (the paper's bound)")
+    if "orbit" in worst.columns:
+        sin_cols = [m for m in worst.columns if m not in ("orbit", "ideal")]
+        first = True
+        for xi, case in zip(x, worst.index, strict=True):
+            if "drifting" in str(case) and sin_cols:
+                ax.hlines(worst.loc[case, sin_cols].min() / 5.0, xi - 0.45, xi + 0.45,
+                          colors="k", linestyles="-", lw=1.6,
+                          label="criterion: 1/5 of the best sinusoid" if first else None)
+                first = False
     label_axes(ax, x="object (NORAD id)", y="worst |error| in 72 min", yunit="″", title=title)
     legend_outside(ax, where="right")
     return ax
