@@ -33,6 +33,11 @@
 # triangulation), 03–04 (track initiation; the modified Hough initiator) and 05 (star
 # extraction). This is the last step of the learning path.
 
+# %%
+from eotrack.notebook import lesson_header
+
+lesson_header("07")
+
 # %% [markdown]
 # ## Setup
 
@@ -436,3 +441,8 @@ if answer is not None:
 #    Cambridge University Press. [DOI 10.1017/CBO9780511811685](https://doi.org/10.1017/CBO9780511811685).
 # 9. Bertin E., Arnouts S. (1996). SExtractor: software for source extraction. *A&AS* 117,
 #    393. [DOI 10.1051/aas:1996164](https://doi.org/10.1051/aas:1996164).
+
+# %%
+from eotrack.notebook import lesson_footer
+
+lesson_footer("07")

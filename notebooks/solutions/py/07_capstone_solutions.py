@@ -9,6 +9,9 @@
 # %% [markdown]
 # # 07 · Capstone — worked solutions
 #
+# [← the lesson: 07 · Capstone](../07_capstone_geo_surveillance.ipynb) ·
+# [index](../00_index.ipynb)
+#
 # Solutions to the exercises of `07_capstone_geo_surveillance.ipynb`. Each computes the
 # answer, checks it with `eotrack.exercises.check`, then discusses it. Try the exercises first.
 
@@ -90,3 +93,7 @@ assert check("capstone.4", answer)
 # triangulates stay right. A (shadow length) is geometry, independent of the sky; C fails
 # because the same two hours work at 400 e⁻/px; D confuses stages — prediction uses the
 # angles, not the triangulated positions.
+
+# %% [markdown]
+# [← the lesson: 07 · Capstone](../07_capstone_geo_surveillance.ipynb) ·
+# [index](../00_index.ipynb)
