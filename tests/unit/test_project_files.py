@@ -15,7 +15,8 @@ def test_license_is_bsd3_as_declared():
     assert text.startswith("BSD 3-Clause License")
     assert "eotrack contributors" in text
     meta = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]
-    assert meta["license"]["text"] == "BSD-3-Clause"
+    assert meta["license"] == "BSD-3-Clause"  # an SPDX expression (PEP 639)
+    assert meta["license-files"] == ["LICENSE"]
 
 
 def test_citation_cff_core_fields():
