@@ -7,5 +7,40 @@ REPORT figure, ``case:<slug>.<function>`` for a figure function drawn by a lint 
 draws yet.
 """
 
+# measured by the lint on 2026-12-01 21:25 (comment: the rules each figure still fails)
 XFAIL: dict[str, str] = {
+    "case:akf_star.plot_example_frames": "P05",  # small-text 5, too-wide 1
+    "case:track_init_hough.plot_explore": "P04",  # legend-covers-data 2, small-text 38, title 1, t
+    "case:track_init_ht.explore_figure": "P03",  # legend-covers-data 1
+    "nocase:akf_star.plot_confidence_trace": "P05",  # no lint case yet
+    "nocase:akf_star.plot_diurnal_check": "P05",  # no lint case yet
+    "nocase:akf_star.plot_error_curves": "P05",  # no lint case yet
+    "nocase:akf_star.plot_explore_errors": "P05",  # no lint case yet
+    "nocase:akf_star.plot_extraction_example": "P05",  # no lint case yet
+    "nocase:akf_star.plot_real_sky": "P05",  # no lint case yet
+    "nocase:akf_star.plot_sage_husa": "P05",  # no lint case yet
+    "nocase:akf_star.plot_ship_attitude": "P05",  # no lint case yet
+    "nocase:akf_star.plot_success_curves": "P05",  # no lint case yet
+    "nocase:ransac_crlb_pose.plot_error_ecdf": "P06",  # no lint case yet
+    "nocase:track_init_hough.plot_scene_tracks": "P04",  # no lint case yet
+    "report:akf_star/fig6_mean_tracking_error": "P05",  # small-text 51, too-wide 1
+    "report:akf_star/fig7_success_rate": "P05",  # small-text 52, too-wide 1
+    "report:track_init_hough/angle_constraint": "P04",  # log-labels 2, small-text 4, title 1
+    "report:track_init_hough/beyond_logic_false_track_rate": "P04",  # log-labels 1, small-text 4,
+    "report:track_init_hough/chance_rate_check": "P04",  # log-labels 2, title 1
+    "report:track_init_hough/comparison_monte_carlo": "P04",  # legend-covers-data 2, small-text 87
+    "report:track_init_hough/fig2_candidates": "P04",  # legend-covers-data 1, small-text 5
+    "report:track_init_hough/fig3_extracted_tracks": "P04",  # legend-covers-data 2, small-text 50,
+    "report:track_init_hough/planted_scenes": "P04",  # axis-label 1, small-text 19, title 1, too-w
+    "report:track_init_hough/rho_theta_voting": "P04",  # small-text 57, too-wide 1
+    "report:track_init_ht/beyond_initiator_vs_eq12_13": "P03",  # small-text 4
+    "report:track_init_ht/fig1_area_probabilities": "P03",  # small-text 20
+    "report:track_init_ht/fig2_sequence_track_detection": "P03",  # small-text 9
+    "report:track_init_ht/fig5_spatial_clustering": "P03",  # legend-covers-data 1, small-text 2
+    "report:track_init_ht/fig6_temporal_test_tracks": "P03",  # legend-covers-data 1, small-text 3
+    "report:track_init_ht/fig7_curved_target_tracks": "P03",  # small-text 36
+    "report:track_init_ht/fig7_curved_target_vs_snr": "P03",  # legend-covers-data 1, small-text 3
+    "report:track_init_ht/sequence_measured_vs_formulas": "P03",  # small-text 4
+    "report:wransac/beyond_generalisation": "P01",  # too-wide 1
+    "report:wransac/beyond_orbit_fit": "P01",  # too-wide 1
 }
