@@ -246,9 +246,13 @@ def separate_targets(det: list[np.ndarray], star_xy: list[np.ndarray], drift: np
 
 
 def _initiator(cfg: CapstoneConfig) -> ModifiedHoughInitiator:
-    # GEO targets: 0 … 0.5 px/s in a GEO-staring frame at 15″/px (inclined drifters ≈ 0.2 px/s)
+    # GEO targets: 0 … 0.5 px/s in a GEO-staring frame at 15″/px (inclined drifters ≈ 0.2 px/s).
+    # Their angular acceleration over a burst of seconds is far below a pixel, so the
+    # constant-acceleration search is off (accel_px_s2=0): its widened disc grows with the square
+    # of the burst's span and would only admit chance tracks (and cost ~1 s per frame here).
     return ModifiedHoughInitiator(d_rho=3.0, d_theta_deg=10.0, d_v=0.05, v_min=0.0, v_max=0.5,
-                                  m=min(cfg.burst_frames, 4), handoff_gate_px=3.0, sigma_px=0.3)
+                                  m=min(cfg.burst_frames, 4), handoff_gate_px=3.0, sigma_px=0.3,
+                                  accel_px_s2=0.0)
 
 
 def observe_burst(rng: np.random.Generator, plan: NightPlan) -> BurstResult:
