@@ -13,7 +13,7 @@ Run: ``.venv/bin/python benchmarks/bench_extraction.py`` (≈ 1–2 min). Report
 * time at 512² and 2048² (interleaved repeats; medians and the ratio from the same run);
 * false detections per 10⁶ px of pure Gaussian noise (32 frames of 1024²) at our default
   threshold, at the former default 3.0 and for SEP at 3σ;
-* cosmic rays on real raw CCD frames shipped by installed packages (ccdproc's SAAO 1.0 m frame,
+* cosmic rays on real raw CCD frames copied to data/ccd/ from packages (ccdproc's SAAO 1.0 m frame,
   astroscrappy's GMOS cutout; see data/README.md): detections on astroscrappy's cosmic-ray
   mask, how many the default drops (sharpness/roundness flags), and SEP's count for reference.
 
@@ -189,7 +189,7 @@ def bench_cosmic() -> None:
 
     try:
         frames = real_ccd_frames()
-    except ImportError as exc:
+    except (ImportError, FileNotFoundError) as exc:
         print(f"[cosmic rays] skipped: {exc}")
         return
     import astroscrappy
