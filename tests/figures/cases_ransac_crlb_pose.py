@@ -24,5 +24,14 @@ def _explore():
     return E.explore_figure("pooled", 1.0)
 
 
+def _ecdf():
+    from eotrack.experiments import ransac_crlb_pose as E
+    from eotrack.montecarlo import TrialRunner
+
+    st = E.Settings(readings=("pooled",))
+    df = E.run_pose_experiment(8, settings=st, runner=TrialRunner(progress=False))
+    return E.plot_error_ecdf(df, "att", ("ransac", "pooled"))
+
+
 CASES = {"draw_scene_3d": _scene_3d, "plot_crlb_ellipsoid": _ellipsoid,
-         "explore_figure": _explore}
+         "explore_figure": _explore, "plot_error_ecdf": _ecdf}

@@ -124,16 +124,22 @@ register(f"{SLUG}.4", ArrayAnswer(
     hint="the ratio is CRLB / RANSAC (not the inverse); the interval, not the point estimate."))
 
 register(f"{SLUG}.5", Choice(
-    "Critique. Why can the §2.4 rule, as printed, never drop a point? (a) RANSAC already "
-    "removed every noisy point; (b) Fisher information is additive and each point's "
-    "contribution is positive semi-definite, so the CRLB can only fall when a point is added; "
-    "(c) the weights of the 7 CRLB values are unknown; (d) 6 points are too few for a pose.",
+    "Transfer. Suppose each point's noise σ_i were known and the score were the exact CRLB "
+    "with J = Σ G_iᵀG_i / σ_i² (points of very different σ_i). A point with a large σ_i is "
+    "offered to the set. Which holds? (a) it raises the score, so the rule drops it; (b) it "
+    "still lowers (or keeps) the score — its term is smaller but still positive semi-definite "
+    "— so the rule keeps it; (c) whether it is kept depends on the order in which points are "
+    "added; (d) the 6-point start test now passes, so points can be dropped.",
     options=["a", "b", "c", "d"], answer="b",
-    hint="write J(S ∪ {i}) in terms of J(S) and look at the sign of what is added."))
+    hint="how big is G_iᵀG_i/σ_i² when σ_i is large, and what is its sign?"))
 
 register(f"{SLUG}.6", Choice(
-    "Critique. Which reading of the rule did we pre-register as primary, from the paper's own "
-    "noise model (eq. 5)? (a) 'as printed'; (b) 'sandwich' with the simulator's σ_i; "
-    "(c) 'pooled' — one σ² estimated from the set's residuals; (d) 'tolerance'.",
-    options=["a", "b", "c", "d"], answer="c",
-    hint="eq. (5) has one σ² for all points, and a real system does not know it."))
+    "Critique. Suppose eq. (5) had given each point its own, known σ_i (so the σ_i are part of "
+    "the paper's model, not an oracle). Which reading would the protocol's textual argument "
+    "(the score must be able to rise, and use only what the model contains) then pick? "
+    "(a) 'as printed' (exact CRLB with those σ_i); (b) 'sandwich' — the covariance of the "
+    "unweighted pose with the known σ_i, which can rise when a noisy point joins; (c) 'pooled' "
+    "— one σ² estimated from the residuals; (d) 'tolerance'.",
+    options=["a", "b", "c", "d"], answer="b",
+    hint="with known σ_i the exact CRLB is still monotone (exercise 5); which score can rise, "
+         "and does it then need anything the model lacks?"))

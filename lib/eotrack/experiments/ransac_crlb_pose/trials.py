@@ -233,7 +233,8 @@ def holm(pvalues: Any) -> np.ndarray:
 def readings_table(df: pd.DataFrame, primary: str = "pooled") -> pd.DataFrame:
     """Per reading × metric: kept fraction, mean ratio, win rate, raw and Holm-adjusted p.
 
-    The ``primary`` reading is the pre-registered confirmatory test (uncorrected p); every
+    The ``primary`` reading is the protocol's confirmatory test (uncorrected p; fixed from the
+    text after earlier results were seen); every
     other reading present in ``df`` is exploratory, and its p-values are Holm-adjusted over the
     whole exploratory family (readings × 2 metrics).
     """
