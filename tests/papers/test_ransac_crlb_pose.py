@@ -10,10 +10,11 @@ from eotrack.repro import Status, load_claims
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-# What we measured with reproduce(quick=True) (60 runs for Figs. 4-5, 30 for Fig. 6).
+# What we measured with reproduce(quick=True) (60 runs for Figs. 4-5, 30 for Fig. 6); since
+# 2026-12-01 "lower mean" needs the ratio's whole interval below 1 (60 runs: it contains 1).
 EXPECTED = {
-    "ransac_crlb_pose.fig4": Status.PARTIAL,
-    "ransac_crlb_pose.fig5": Status.PARTIAL,
+    "ransac_crlb_pose.fig4": Status.NOT_REPRODUCED,
+    "ransac_crlb_pose.fig5": Status.NOT_REPRODUCED,
     "ransac_crlb_pose.fig6": Status.NOT_REPRODUCED,
 }
 
@@ -85,23 +86,43 @@ def test_evaluators_are_what_reproduce_uses(rep):
                                 n_fallback=0)) == Status.NOT_REPRODUCED
 
 
-def test_root_seed_changes_runs_and_is_repeatable():
-    a = exp.reproduce(quick=True, runner=TrialRunner(progress=False), seed=2)
-    b = exp.reproduce(quick=True, runner=TrialRunner(progress=False), seed=2)
-    assert [r.status for r in a.claims] == [r.status for r in b.claims]
-    assert a.data["runs"]["pos_ransac"].equals(b.data["runs"]["pos_ransac"])
-    # the exploratory pooled runs are the same runs as reproduce(seed=s) makes
-    pooled = exp.pooled_seed_runs((2,), n_runs=60, runner=TrialRunner(progress=False))
-    ok = a.data["runs"][a.data["runs"]["success"]]
-    np.testing.assert_array_equal(pooled["pos_pooled"].to_numpy(), ok["pos_pooled"].to_numpy())
+def test_root_seed_changes_runs_and_is_repeatable(tmp_path):
+    """Tiny counts: the same root seed gives the same runs, another seed other runs; the
+    exploratory pooled runs are the runs reproduce(seed=s) makes (the reading set does not
+    change a run's random numbers)."""
+    from dataclasses import replace
+
+    tr = TrialRunner(progress=False)
+    s2, s3 = exp.root_seeds(2), exp.root_seeds(3)
+    assert s2 == exp.root_seeds(2) and s2["runs"] != s3["runs"]
+    st_all = replace(exp.Settings(), readings=tuple(exp.READINGS))
+    a = exp.run_pose_experiment(6, settings=st_all, runner=tr, seed=s2["runs"])
+    b = exp.run_pose_experiment(6, settings=st_all, runner=tr, seed=s2["runs"])
+    c = exp.run_pose_experiment(6, settings=st_all, runner=tr, seed=s3["runs"])
+    assert a["pos_ransac"].equals(b["pos_ransac"]) and not a["pos_ransac"].equals(c["pos_ransac"])
+    pooled = exp.pooled_seed_runs((2,), n_runs=6, runner=tr)
+    np.testing.assert_array_equal(pooled["pos_pooled"].to_numpy(),
+                                  a[a["success"]]["pos_pooled"].to_numpy())
     assert set(pooled["root_seed"]) == {2}
-    c = exp.reproduce(quick=True, runner=TrialRunner(progress=False), seed=3)
-    assert not a.data["runs"]["pos_ransac"].equals(c.data["runs"]["pos_ransac"])
+    summ = exp.pooled_summary(pooled, "pooled")
+    assert summ["runs"] == len(pooled) and summ["root_seeds"] == [2]
+    for q in ("pos", "att"):
+        lo, hi = summ[q]["ci"]
+        assert lo <= summ[q]["mean_ratio"] <= hi and 0 <= summ[q]["p_less"] <= 1
+    exp.write_pooled_study(tmp_path / "p.json", summ)
+    assert exp.read_pooled_study(tmp_path / "p.json") == summ
+    assert exp.read_pooled_study(tmp_path / "none.json") is None
     with pytest.raises(ValueError, match="seed"):
         exp.reproduce(quick=True, seed=-1)
-    import matplotlib.pyplot as plt
 
-    plt.close("all")
+
+def test_committed_pooled_study_matches_protocol():
+    """The exploratory 6 × 300 runs written by make repro (read by the notebook)."""
+    summ = exp.read_pooled_study()
+    assert summ is not None and summ["reading"] == exp.load_protocol()["primary_reading"]
+    assert summ["root_seeds"] == [-1, 1, 2, 3, 4, 5] and summ["runs"] >= 6 * 250
+    lo, hi = summ["kept_fraction"]["ci"]
+    assert lo <= summ["kept_fraction"]["mean"] <= hi
 
 
 def test_rule_as_printed_selects_everything(rep):
