@@ -308,8 +308,37 @@ def _escape_bars(app, what, name, obj, options, lines) -> None:
         lines[i] = "`".join(parts)
 
 
+_SECTIONS = {"Parameters", "Other Parameters", "Returns", "Yields", "Raises", "Warns",
+             "Attributes"}
+_PARAM_LINE = re.compile(r"^[\w*][\w*, ]*(\s*:.*)?$")
+
+
+def _stray_paragraphs(app, what, name, obj, options, lines) -> None:
+    """A prose paragraph written inside a numpydoc field section (after the last parameter, at
+    the section's indentation) breaks napoleon's field list ("Field list ends without a blank
+    line"); give it a ``Notes`` heading of its own (runs before napoleon)."""
+    section = None
+    i = 0
+    while i < len(lines):
+        line = lines[i]
+        nxt = lines[i + 1] if i + 1 < len(lines) else ""
+        if line.strip() in _SECTIONS and set(nxt.strip()) == {"-"}:
+            section = line.strip()
+            i += 2
+            continue
+        if line.strip() and set(nxt.strip()) == {"-"}:
+            section = None
+        elif (section and line.strip() and not line.startswith((" ", "\t")) and i > 0
+              and not lines[i - 1].strip() and not _PARAM_LINE.match(line.strip())):
+            lines[i:i] = ["Notes", "-----"]
+            section = None
+            i += 2
+        i += 1
+
+
 def setup(app):
     app.connect("source-read", _on_source_read)
+    app.connect("autodoc-process-docstring", _stray_paragraphs, priority=100)
     app.connect("autodoc-process-docstring", _escape_bars)
     app.connect("doctree-read", _tags_outside_split)
     app.connect("build-finished", _redirect)
