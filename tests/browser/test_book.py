@@ -104,12 +104,13 @@ SUBPACKAGES = ("astro", "exercises", "geometry", "imaging", "montecarlo", "noteb
 #: redraw them narrower (house style: at most 9 in at 100 dpi); value: owner
 WIDE_FIGURES_XFAIL = {
     "notebooks/01_wransac_trajectory_prediction": "P01",
-    "notebooks/03_track_init_hypothesis_testing": "P03",
     "notebooks/04_track_init_logic_hough": "P04",
     "notebooks/05_akf_star_tracking": "P05",
-    "papers_repro/epipolar/REPORT": "P02",
+    # stored outputs from before its figures were redrawn: 07 cannot be re-executed while the
+    # extraction is ~20x slower (its night exceeds the 900 s cell timeout; see FIG's requests)
+    "notebooks/07_capstone_geo_surveillance": "FIG",
+    "papers_repro/akf_star/REPORT": "P05",
     "papers_repro/track_init_hough/REPORT": "P04",
-    "papers_repro/track_init_ht/REPORT": "P03",
     "papers_repro/wransac/REPORT": "P01",
 }
 MAX_NATIVE_PX = 900  # the 720 px column / 0.8
