@@ -59,7 +59,7 @@ from eotrack.exercises import check, exercise_ids
 from eotrack.experiments import wransac as W
 from eotrack.montecarlo import TrialRunner
 from eotrack.notebook import dropdown, panel, setup_notebook, toggle, versions
-from eotrack.repro import load_claims
+from eotrack.repro import load_claims, papers_repro_dir
 from eotrack.robust import (
     SinusoidDrift,
     draw_samples,
@@ -354,9 +354,8 @@ for name, th in (("best 4-point hypothesis", theta_hyp), ("RANSAC (OLS refit)", 
 # inliers — the "ideal" reference. RANSAC and WRANSAC both sit above it; which sits closer is
 # an empirical question (section 5).
 #
-# With Student-t noise ($\nu$ dof, same $\sigma$) the bound is a fraction
-# $(\nu+3)(\nu-2)/\big(\nu(\nu+1)\big)$ of the OLS variance: down-weighting the tails *can*
-# help. The extrapolation leverage:
+# With Student-t noise ($\nu$ dof, same $\sigma$) the bound lies *below* the OLS variance (by
+# how much is exercise 1): down-weighting the tails *can* help. The extrapolation leverage:
 
 # %%
 all_in = np.ones(len(t_obs), bool)
@@ -425,28 +424,40 @@ display(Markdown(
 # **Which noise level?** The paper adds "幅值为3″的高斯白噪声", Gaussian white noise of
 # *amplitude* 3″. We read σ = 3″ (the claims use it). "Amplitude" could also mean the 3σ extent
 # of the noise, σ = 1″. Both readings are measured here, on the same scenario, with the
-# threshold kept at 3σ; the paper's 15-min RANSAC variance is printed beside them.
+# threshold kept at 3σ, at both of the paper's horizons (15 and 72 min), beside its RANSAC
+# variances.
 
 # %%
 res_amp = W.run_prediction_experiment(replace(cfg, sigma_arcsec=cfg.sigma_arcsec / 3),
                                       scenario=sc, n_runs=N_SIDE,
                                       methods=("ransac", "wransac", "ideal"), runner=runner)
-v15_paper = claims["wransac.table1"].paper["values"]["15"]["variance"][2]
-v15_ours = float(np.var(res.method_errors("ransac", "dec", 15)))
-v15_amp = float(np.var(res_amp.method_errors("ransac", "dec", 15)))
-v15 = {f"σ = {cfg.sigma_arcsec:g}″ (ours)": v15_ours,
-       f"σ = {cfg.sigma_arcsec / 3:g}″ (3σ = 3″)": v15_amp}
+paper_v = {h: claims["wransac.table1"].paper["values"][str(h)]["variance"][T1.index("ransac")]
+           for h in (15, 72)}
+readings = {f"σ = {cfg.sigma_arcsec:g}″ (ours)": res,
+            f"σ = {cfg.sigma_arcsec / 3:g}″ (3σ = 3″)": res_amp}
+noise_tab = pd.DataFrame({
+    name: {f"{co} {h} min": float(np.var(r.method_errors("ransac", co, h)))
+           for h in (15, 72) for co in ("dec", "ra")} for name, r in readings.items()})
+noise_tab["paper (coordinate unstated)"] = [paper_v[int(k.split()[1])] for k in noise_tab.index]
 r_amp = W.variance_ratio(res_amp, "wransac", "ransac", "dec", 72)
-sigma_match = cfg.sigma_arcsec * np.sqrt(v15_paper / v15_ours)
+grow_paper = paper_v[72] / paper_v[15]
+grow_ours = noise_tab.loc["dec 72 min"].iloc[0] / noise_tab.loc["dec 15 min"].iloc[0]
+sigma_match = {h: cfg.sigma_arcsec * np.sqrt(paper_v[h] / noise_tab.loc[f"dec {h} min"].iloc[0])
+               for h in (15, 72)}
+display(noise_tab.round(2))
 display(Markdown(
-    "15-min Dec variance of RANSAC: " + "; ".join(f"{k}: {v:.2f} ″²" for k, v in v15.items())
-    + f"; the paper: {v15_paper:g} ″². Neither reading reaches the paper's value; matching it "
-    f"would take σ ≈ {sigma_match:.0f}″ with our track. The ordering does not depend on the "
-    f"reading: at σ = {cfg.sigma_arcsec / 3:g}″ the 72-min WRANSAC/RANSAC ratio is "
+    f"RANSAC's variance, ″². Matching the paper at 15 min would take σ ≈ {sigma_match[15]:.0f}″, "
+    f"at 72 min σ ≈ {sigma_match[72]:.1f}″ — our σ = {cfg.sigma_arcsec:g}″ already matches the "
+    f"72-min value. From 15 to 72 min the paper's variance grows ×{grow_paper:.1f}, white noise "
+    f"extrapolated by our model ×{grow_ours:.0f}: no single σ matches both horizons, so the "
+    "paper's short-horizon errors are not extrapolated white noise (its data or model must "
+    "carry another error that does not grow with the horizon). The ordering does not depend "
+    f"on the reading: at σ = {cfg.sigma_arcsec / 3:g}″ the 72-min WRANSAC/RANSAC ratio is "
     f"{r_amp[0]:.2f} [{r_amp[1]:.2f}, {r_amp[2]:.2f}] ({res_amp.n_runs} paired runs): the inlier "
     "noise, the threshold and so both refits scale with σ, while the gross errors stay far "
     "outside the threshold."))
-assert v15_amp < v15_ours < v15_paper
+assert noise_tab.loc["dec 15 min"].iloc[1] < noise_tab.loc["dec 15 min"].iloc[0] < paper_v[15]
+assert grow_ours > 3 * grow_paper
 
 # %% [markdown]
 # ### Figs. 4–5 — the inliers' loss values and weights
@@ -720,50 +731,91 @@ display(Markdown("**Recommendation.** " + W.recommendation(worst)))
 # least squares with a Cauchy loss, two-body dynamics (J2: `dynamics="j2"`). In every run the
 # orbit fit and the sinusoid predictors see the *same* angles and gross errors.
 #
-# **Criterion, written and committed before the first run** (`W.ORBIT_CRITERION`):
+# **Criterion, written and committed before the first run** (`W.ORBIT_CRITERION`). The
+# comparison and the same criterion over the five independent root seeds of `--seeds 5` take
+# about two minutes, so `make repro` computes them (`W.orbit_comparison`,
+# `W.orbit_seed_study`) into `papers_repro/wransac/orbit_study.json` and this notebook reads
+# that file — the numbers below are the committed full run's, whatever `QUICK` says.
 
 # %%
 display(Markdown(f"> {W.ORBIT_CRITERION}"))
-orbit = W.orbit_comparison(cfg, n_runs=N_SIDE // 2, runner=runner)
+orbit, orbit_seeds, orbit_runs = W.read_orbit_study(papers_repro_dir() / "wransac"
+                                                    / W.ORBIT_STUDY_FILE)
 orbit_ok, orbit_crit = W.orbit_criterion(orbit)
-orbit.round(1)
+print(f"{orbit_runs} paired runs per case (committed run); seed study: "
+      f"{orbit_seeds['root seed'].nunique()} root seeds × {orbit_seeds['case'].nunique()} "
+      "drifting cases")
+orbit.drop(columns=["p90 run"], level=0).round(1)
 
 # %%
 W.plot_generalisation(orbit, title="Orbit fit vs sinusoid predictors")
 plt.show()
-display(Markdown(W.orbit_text(orbit)))
+display(Markdown(W.orbit_text(orbit, orbit_seeds, sigma_arcsec=cfg.sigma_arcsec)))
 orbit_crit.round(2)
+
+# %% [markdown]
+# The criterion over the independent root seeds (each row: one seed's 50-run comparison on a
+# drifting case):
+
+# %%
+orbit_seeds.round(2)
 
 # %%
 # NBVAL_CHECK_OUTPUT
-print("orbit-fit criterion (drifting cases, ≥ 5× better):", "met" if orbit_ok else "not met")
-
-# %%
-# why: the orbit fit is noise-limited, not model-limited — the same fit on noise-free angles
-from eotrack.astro import fit_orbit
-
-inp = W.orbit_inputs(sc, cfg.station)
-f0 = fit_orbit(sc.t_obs_s, W.absolute_ra(sc.truth_obs[0], sc.t_obs_s, inp["ra0_deg"]),
-               sc.truth_obs[1] / 3600, inp["site_obs"], sigma_arcsec=cfg.sigma_arcsec)
-ra_p, dec_p = f0.predict(sc.t_pred_s, inp["site_pred"])
-ra_true = W.absolute_ra(sc.truth_pred[0], sc.t_pred_s, inp["ra0_deg"])
-model_err = max(np.abs(((ra_p - ra_true + 180) % 360 - 180) * 3600).max(),
-                np.abs(dec_p * 3600 - sc.truth_pred[1]).max())
-display(Markdown(
-    f"Noise-free angles of the main case: the two-body orbit fit predicts the SGP4 track to "
-    f"{model_err:.2f}″ over 72 min — the model error. With σ = {cfg.sigma_arcsec:g}″ its median "
-    f"worst error is {orbit.loc[orbit.index[0], ('median run', 'orbit')]:.0f}″: what remains is "
-    "the noise propagated through an angles-only fit of a short arc (the range is seen only "
-    "through the station's parallax). Where the sinusoid model fits well (the geostationary "
-    "cases) both are noise-limited and the margin is small; where the object drifts the "
-    "sinusoid model fails and the orbit does not."))
-assert model_err < 2.0
+print("orbit-fit criterion (drifting cases, ≥ 5× better), committed run:",
+      "met" if orbit_ok else "not met")
+print("seeds meeting it, per drifting case:", {k.split(" (")[0]: f"{int(g.sum())}/{len(g)}"
+                                              for k, g in orbit_seeds.groupby("case")["met"]})
 
 # %% [markdown]
-# **For a practitioner**: predict through a shadow or cloud gap from a robustly fitted orbit when
-# the track is not the sidereal sinusoid. With a sinusoid model, spend the hypothesis budget,
-# refit by least squares on the inliers and polish with an M-estimator started from RANSAC;
-# down-weight only for heavy-tailed noise, never with weights from the 4-point hypothesis.
+# Why: on noise-free angles, which model limits the prediction? On the two drifting cases, the
+# same orbit fit and the sinusoid model (least squares on the same noise-free 2 h, the "ideal"
+# reference without noise) against the SGP4 track over the 72 min:
+
+# %%
+from eotrack.astro import fit_orbit
+
+
+def noise_free_errors(changes: dict) -> dict:
+    """Worst 72-min |error| (″) of the orbit fit and of the sinusoid model on noise-free angles."""
+    c = replace(cfg, **changes)
+    s_c = W.make_scenario(c)
+    inp = W.orbit_inputs(s_c, c.station)
+    f0 = fit_orbit(s_c.t_obs_s, W.absolute_ra(s_c.truth_obs[0], s_c.t_obs_s, inp["ra0_deg"]),
+                   s_c.truth_obs[1] / 3600, inp["site_obs"], sigma_arcsec=c.sigma_arcsec)
+    ra_p, dec_p = f0.predict(s_c.t_pred_s, inp["site_pred"])
+    ra_true = W.absolute_ra(s_c.truth_pred[0], s_c.t_pred_s, inp["ra0_deg"])
+    orbit_err = max(np.abs(((ra_p - ra_true + 180) % 360 - 180) * 3600).max(),
+                    np.abs(dec_p * 3600 - s_c.truth_pred[1]).max())
+    m = SinusoidDrift(t_ref_s=s_c.t_obs_s.mean())
+    sin_err = max(np.abs(predict_linear(m, fit_linear(m, s_c.t_obs_s, s_c.truth_obs[ci]),
+                                        s_c.t_pred_s) - s_c.truth_pred[ci]).max()
+                  for ci in range(2))
+    return {"orbit fit (″)": orbit_err, "sinusoid model (″)": sin_err}
+
+
+drift_cases = {k: v for k, v in W.GENERALISATION_CASES.items() if "drifting" in k}
+noise_free = pd.DataFrame({k.split(" (")[0]: noise_free_errors(v)
+                           for k, v in drift_cases.items()}).T
+display(noise_free.round(2))
+med_orbit = orbit.loc[list(drift_cases), ("median run", "orbit")]
+display(Markdown(
+    "Noise-free, the orbit fit predicts the SGP4 track of the drifting objects to "
+    + " and ".join(f"{v:.2f}″" for v in noise_free["orbit fit (″)"])
+    + " over 72 min, while the sinusoid model is off by "
+    + " and ".join(f"{v:.0f}″" for v in noise_free["sinusoid model (″)"])
+    + f" even without noise: the sinusoid model fails on a drifting object, the orbit does "
+    f"not. With σ = {cfg.sigma_arcsec:g}″ the orbit fit's median worst error is "
+    + " and ".join(f"{v:.0f}″" for v in med_orbit)
+    + ": what remains is the noise propagated through an angles-only fit of a short arc (the "
+    "range is seen only through the station's parallax)."))
+assert (noise_free["orbit fit (″)"] < 2.0).all()
+assert (noise_free["sinusoid model (″)"] > 10 * noise_free["orbit fit (″)"]).all()
+
+# %% [markdown]
+# **For a practitioner**: predict from a robustly fitted orbit. With a sinusoid model, spend the
+# hypothesis budget, refit by least squares on the inliers, polish with an M-estimator from
+# RANSAC; down-weight only for heavy-tailed noise, never with 4-point-hypothesis weights.
 
 # %% [markdown]
 # ## 10 · Key points
@@ -792,13 +844,14 @@ assert model_err < 2.0
 print(exercise_ids("wransac"))
 
 # %% [markdown]
-# **Exercise 1 (derivation).** For Student-t inlier noise with ν = 5 and standard deviation σ,
-# derive the Cramér–Rao bound on the variance of an unbiased predictor as a fraction of the OLS
-# (Gauss–Markov) variance. (Fisher information of a t location with scale $s$:
-# $(\nu+1)/((\nu+3)s^2)$.)
+# **Exercise 1 (derivation).** For Student-t inlier noise with ν degrees of freedom and
+# standard deviation σ, derive the Cramér–Rao bound on the variance of an unbiased predictor as
+# a fraction of the OLS (Gauss–Markov) variance, as a function of ν (4.7 prints only its value
+# at ν = 3). At what ν — a real number, not rounded — is the fraction 0.9? (Fisher information
+# of a t location with scale $s$: $(\nu+1)/((\nu+3)s^2)$.)
 
 # %%
-answer = None  # your fraction here
+answer = None  # your ν here
 if answer is not None:
     display(check("wransac.1", answer))
 
@@ -813,8 +866,8 @@ if answer is not None:
     display(check("wransac.2", answer))
 
 # %% [markdown]
-# **Exercise 3 (exploration).** From the Explore sweep `budget_err` (runs × budgets × methods ×
-# times), compute the fraction (0–1) of runs in which WRANSAC with the hypothesis weights
+# **Exercise 3 (exploration).** With `QUICK = False` (the checker uses the full sweep of
+# 100 runs), from the Explore sweep `budget_err` (runs × budgets × methods × times), compute the fraction (0–1) of runs in which WRANSAC with the hypothesis weights
 # (`"wransac_hypothesis"`), with U = 10, keeps its whole 72-min Dec prediction within **20″**.
 
 # %%
@@ -825,7 +878,8 @@ if answer is not None:
 # %% [markdown]
 # **Exercise 4 (critique).** The paper ordered WRANSAC and RANSAC from 20 runs, each method on
 # its own draws. Take the true 72-min Dec variance ratio WRANSAC/RANSAC to be the one our paired
-# runs measure (`W.variance_ratio(res, "wransac", "ransac", "dec", 72)`), and model each
+# runs measure (`W.variance_ratio(res, "wransac", "ransac", "dec", 72)`, with `QUICK = False`:
+# the checker uses the 300 paired runs), and model each
 # method's 20-run variance estimate as $\sigma^2\chi^2_{19}/19$, independent between the two.
 # With what probability do 20 unpaired runs show WRANSAC's variance *below* RANSAC's?
 
@@ -847,10 +901,15 @@ if wls is not None:
 # ## Closing note (issue 24)
 #
 # The expert review found 8 defects (a confounded threshold study, an overclaimed bound, a
-# false "only reading", an eq. (1) check that could not fail, unflagged readings of the noise
-# amplitude and of the MSAC reference, hand-typed configuration numbers, three exercises
-# answered above them, prose over length); all 8 are fixed above. The second, independent
-# review of this version has not run yet; its counts (found / fixed / left) belong here.
+# false "only reading", an eq. (1) check that could not fail, unflagged readings, hand-typed
+# numbers, three exercises answered above them, prose over length): all 8 fixed. The
+# independent review of that version found **12** (0 high, 7 medium, 5 low): **12 fixed, 0
+# left** — the orbit text's explanation replaced by the measured tail, bias and paired
+# per-run ratio (1); the criterion over five root seeds, fragile cases marked (2); the
+# noise-free check on the drifting cases (3) and "about 2×" on the others (4); the J2 fit's
+# crash and silent unit errors (5, 6: library and tests); exercise 1 re-posed (7); exercises
+# 3–4 need `QUICK = False` (8); both horizons of the noise level (9); the orbit figures (10);
+# time per fit as a ratio (11); the J2 pole and Gauss start stated (12).
 
 # %% [markdown]
 # ## 12 · References

@@ -32,21 +32,26 @@ setup_notebook()
 # model the bound on any unbiased predictor is $\sigma^2_{\text{CR}} = (a^\top(A^\top A)^{-1}a)/I$
 # while OLS gives $\sigma^2 a^\top(A^\top A)^{-1}a$, so the ratio is
 # $(\nu+3)(\nu-2)/(\nu(\nu+1))$, independent of the design.
+#
+# Setting it to 0.9: $(\nu+3)(\nu-2) = 0.9\,\nu(\nu+1)$, i.e. $0.1\nu^2 + 0.1\nu - 6 = 0$,
+# $\nu^2 + \nu - 60 = 0$, $\nu = (-1 + \sqrt{241})/2$ (the other root is negative).
 
 # %%
-nu = 5.0
-answer = (nu + 3) * (nu - 2) / (nu * (nu + 1))
-# numeric check of the Fisher information by integration of the squared score
+answer = (-1 + np.sqrt(241)) / 2
+frac = lambda nu: (nu + 3) * (nu - 2) / (nu * (nu + 1))  # noqa: E731
+# numeric check of the Fisher information by integration of the squared score, at that ν
+nu = answer
 s = np.sqrt((nu - 2) / nu)  # σ = 1
 score2 = lambda x: (stats.t.logpdf(x + 1e-6, nu, scale=s)  # noqa: E731
                     - stats.t.logpdf(x - 1e-6, nu, scale=s)) ** 2 / 4e-12
 fisher = integrate.quad(lambda x: score2(x) * stats.t.pdf(x, nu, scale=s), -np.inf, np.inf)[0]
-print(f"ratio by formula {answer:.4f}; 1 / Fisher information by integration {1 / fisher:.4f}")
-assert abs(answer - 1 / fisher) < 1e-3
+print(f"ν = {answer:.4f}: fraction by formula {frac(nu):.4f}; 1 / Fisher information by "
+      f"integration {1 / fisher:.4f}; library {W.student_t_efficiency(nu):.4f}")
+assert abs(frac(nu) - 1 / fisher) < 1e-3 and abs(frac(nu) - 0.9) < 1e-12
 assert check("wransac.1", answer)
 
 # %% [markdown]
-# With ν = 5 a perfect estimator could cut the variance by a fifth; with ν = 3 by half. That
+# With ν ≈ 7.3 a perfect estimator could cut the variance by a tenth; with ν = 3 by half. That
 # room is what the refit readings of WRANSAC use under Student-t(3) noise; under Gaussian noise
 # (ν → ∞, ratio → 1) there is no such room below OLS on the true inliers.
 #
