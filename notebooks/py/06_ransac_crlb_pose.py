@@ -208,14 +208,17 @@ assert not fail.success
 # %% [markdown]
 # ### The CRLB of the pose (§2.3, eqs. 3–5; eqs. 6–19 re-derived)
 #
-# The paper's eqs. (3)–(5): for any unbiased estimator
+# The paper's eqs. (3)–(4): for any unbiased estimator of
+# $\theta = (t_1,t_2,t_3,q_0,q_1,q_2,q_3)$ (defined in the text)
 #
 # $$ \mathrm{cov}(\hat\theta) \succeq J^{-1} \quad (3), \qquad
 #    J = -E\!\left[\frac{\partial^2 \ln p(x;\theta)}{\partial\theta\,\partial\theta^\top}\right]
-#    \quad (4), \qquad \theta = (t_1,t_2,t_3,q_0,q_1,q_2,q_3) \quad (5),$$
+#    \quad (4),$$
 #
-# with every image coordinate carrying white Gaussian noise $N(0,\sigma^2)$. Eqs. (6)–(19)
-# (the blocks $E_{t_1t_1}, E_{t_1t_2}, \dots, E_{qq}$) were images and are lost. Re-derived:
+# and eq. (5) is the likelihood $p(x;\theta)$ of white Gaussian noise $N(0,\sigma^2)$ on every
+# image coordinate. In the original (6) is $\ln p$, (7) its first derivatives, (8)–(17) the
+# blocks $E_{t_1t_1}, E_{t_1t_2}, \dots, E_{qq}$ and (18)–(19) the bound and $M_\theta$; they were
+# images, except eq. (9), which survives as text: $E_{t_1t_2} = d_{t_1t_2} = 0$. Re-derived:
 # with independent noise $N(0, \sigma_i^2)$ on both coordinates of point $i$,
 # $\ln p = -\tfrac12\sum_i |u_i - \pi_i(\theta)|^2/\sigma_i^2 + $ const, so
 #
@@ -249,6 +252,9 @@ C7 = constrained_crlb(J7, q)
 C6 = pose_crlb(X_in, sc.R, sc.t, sc.K, s_in)
 Emap = minimal_to_quaternion_jacobian(q)
 assert np.allclose(C7, Emap @ C6 @ Emap.T, rtol=1e-6, atol=1e-14)
+# eq. (9), the one block that survives as text: E_t1t2 = 0 (exactly, for a K = diag(f, f, 1))
+print("eq. (9): J6[t1, t2] =", J6[0, 1], "; J7[t1, t2] =", J7[0, 1])
+assert J6[0, 1] == 0.0 and J7[0, 1] == 0.0
 pd.DataFrame({"√CRLB": np.sqrt(np.diag(C7))},
              index=["t1 (m)", "t2 (m)", "t3 (m)", "q0", "q1", "q2", "q3"]).T
 
@@ -282,16 +288,16 @@ assert 0.7 < mc_vs_bound < 1.4
 # But $J(S\cup\{i\}) = J(S) + G_i^\top G_i/\sigma_i^2$ with the added term $\succeq 0$, so
 # $J(S\cup\{i\})^{-1} \preceq J(S)^{-1}$: **every CRLB, and any non-negative weighted sum of
 # them, can only fall when a point is added.** Six points can never beat all inliers (the start
-# test always fails), and past the start every point is kept. The solid lines below are the
-# exact score along five random orders of one scene's points; the dotted ones are the
-# covariance of an *unweighted* pose on the same sets (the "sandwich"), which can rise when a
-# noisy point joins.
+# test always fails), and past the start every point is kept. Below, one colour per random
+# order of one scene's points: solid = the exact score, dotted = the covariance of an
+# *unweighted* pose on the same sets (the "sandwich"), which can rise when a noisy point joins.
 #
 # **The score's units.** The translation CRLBs are in m², the quaternion CRLBs have no unit.
 # With the paper's unstated weights set to 1, as here, the score adds m² to a pure number: its
 # value, and which point lowers it, change if positions are in mm. The shares below: unit
 # weights, and dimensionless weights $(1/|t|^2 \times 3, 1 \times 4)$ (`scaled_crlb_weights`).
-# The reproduction keeps unit weights (pre-registered); *Beyond* compares the two.
+# The reproduction keeps unit weights (fixed in the first claims.toml); *Beyond* compares the
+# two.
 
 # %%
 shares = {"unit weights (m² + 1)": score_shares(X_in, sc.R, sc.t, sc.K, s_in),
@@ -334,7 +340,7 @@ assert trial_table.loc["as printed", "kept"] == res.n_inliers
 trial_table
 
 # %% [markdown]
-# ### The reading is fixed before the run
+# ### The reading is fixed before the deciding run (not before every result)
 #
 # Which reading is "the paper's"? It has to be decided from the text, before looking at the
 # 300 runs — otherwise we would pick the reading that happens to look best, and a 5 % test
@@ -401,8 +407,9 @@ E.error_summary(runs)
 # ### Fig. 4 — position error, RANSAC alone vs RANSAC + CRLB
 #
 # *Paper:* "the relative position from the CRLB-selected points is more accurate than with
-# RANSAC alone; accuracy clearly improved" (300 runs). Left: one box per method, each run a
-# faint line joining its errors (what the paired test compares); right: the ECDF.
+# RANSAC alone; accuracy clearly improved" (300 runs). Top: one box per method, each run a
+# faint line joining its errors; bottom: the ECDF of each run's paired ratio to RANSAC's error
+# — what the paired tests compare (the ECDFs of the errors themselves overlap).
 
 # %%
 fig = E.figure_errors(runs, "pos", methods)
@@ -418,7 +425,8 @@ fig = E.figure_errors(runs, "att", methods)
 # %% [markdown]
 # Every reading against RANSAC alone, paired run by run: mean ratio (< 1 = better), win rate,
 # one-sided Wilcoxon signed-rank p, and the Holm-adjusted p for the exploratory family. The
-# primary reading's p is the pre-registered test and is not adjusted.
+# primary reading's p is the protocol's test (fixed from the text after earlier results were
+# seen) and is not adjusted.
 
 # %%
 readings = E.readings_table(runs, primary=primary)
@@ -440,7 +448,7 @@ lo5, hi5 = E.bootstrap_ratio_ci(ok[f"att_{primary}"], ok["att_ransac"], seed=1)
 ex = readings[readings["role"] == "exploratory"]
 best = ex["p (Holm)"].idxmin()
 display(Markdown(
-    f"**Fig. 5 decision (pre-registered `{primary}`):** mean attitude error ratio "
+    f"**Fig. 5 decision (primary `{primary}`):** mean attitude error ratio "
     f"{r5['mean ratio']:.3f} (95 % CI {lo5:.3f}–{hi5:.3f}), CRLB better in "
     f"{100 * r5['win rate']:.0f} % of runs, one-sided Wilcoxon p = {r5['p']:.3f} "
     f"({'<' if r5['p'] < proto['alpha'] else '≥'} α = {proto['alpha']}). The smallest "
@@ -454,6 +462,10 @@ assert readings.loc[("as printed", "att"), "kept / inliers"] == 1.0
 assert lo5 <= r5["mean ratio"] <= hi5
 
 # %% [markdown]
+# **What the criterion tests:** the whole 95 % interval of the ratio below 1 *and* p < α
+# (`partial`: one of them). The direction only — not the paper's "clearly improved": with
+# enough runs any gain would pass.
+#
 # The gains of any reading are a few per cent, not a "clear improvement". Two reasons. Even
 # keeping exactly the low-noise points could lower an unweighted solver's RMS only to the ratio
 # printed below; and the flip ambiguity puts some runs tens of degrees off whatever the
@@ -497,7 +509,9 @@ display(Markdown(
     f"{100 * (hi_b / c6['selected_fraction'] - 1):.0f} % above. The interval "
     f"{'contains' if ci6[0] < lo_b < ci6[1] else 'does not contain'} the lower edge: whether "
     "the point estimate falls inside the band is decided by the Monte Carlo noise, so the "
-    "criterion now asks for the whole interval inside the band (history row above)."))
+    "criterion now asks for the whole interval inside the band (history row above). The band "
+    "dates from the first commit; whether it was set before Fig. 6's numbers were seen is not "
+    "recorded."))
 
 # %% [markdown]
 # With the per-point start test a 6-point start that beats the all-inlier score is found in
@@ -541,34 +555,38 @@ else:
 # %% [markdown]
 # **Exploratory: more runs.** Pooling the default and the five seeds' runs (6 × 300 paired
 # runs; decided after seeing the table, so it cannot change a status) narrows the interval on
-# the size of the effect:
+# the size of the effect. They take about 90 s, so `make repro` computes them
+# (`E.pooled_seed_runs`, summarised by `E.pooled_summary`) into
+# `papers_repro/ransac_crlb_pose/pooled_seed_runs.json`, read here:
 
 # %%
-pooled_runs = E.pooled_seed_runs((None,) if QUICK else (None, 1, 2, 3, 4, 5),
-                                 n_runs=60 if QUICK else st.n_runs, runner=runner)
-prow = {}
-for q in ("pos", "att"):
-    a_p, b_p = pooled_runs[f"{q}_{primary}"], pooled_runs[f"{q}_ransac"]
-    lo_p, hi_p = E.bootstrap_ratio_ci(a_p, b_p)
-    prow[q] = {"runs": len(a_p), "mean ratio CRLB / RANSAC": a_p.mean() / b_p.mean(),
-               "95 % CI": f"{lo_p:.3f}–{hi_p:.3f}",
-               "one-sided Wilcoxon p": E.wilcoxon_less(a_p, b_p)}
-frac_p = (pooled_runs[f"n_{primary}"] / pooled_runs["n_inliers"]).to_numpy()
-ci_p = E.bootstrap_mean_ci(frac_p)
-display(pd.DataFrame(prow).T)
-print(f"kept fraction over the same {len(frac_p)} runs: {frac_p.mean():.3f} "
-      f"(95 % CI {ci_p[0]:.3f}–{ci_p[1]:.3f})")
+pooled = E.read_pooled_study()
+assert pooled is not None and pooled["reading"] == primary, "run make repro first"
+display(pd.DataFrame({q: {"runs": pooled[q]["runs"],
+                          "mean ratio CRLB / RANSAC": pooled[q]["mean_ratio"],
+                          "95 % CI": "{:.3f}–{:.3f}".format(*pooled[q]["ci"]),
+                          "one-sided Wilcoxon p": pooled[q]["p_less"]}
+                      for q in ("pos", "att")}).T)
+kf = pooled["kept_fraction"]
+two3 = c6["selected_fraction"]
+display(Markdown(
+    f"**Fig. 6 over {pooled['runs']} runs:** kept fraction {kf['mean']:.3f} (95 % CI "
+    f"{kf['ci'][0]:.3f}–{kf['ci'][1]:.3f}), {100 * (1 - kf['mean'] / two3):.0f} % below two "
+    f"thirds and {kf['mean'] - lo_b:.3f} "
+    f"{'inside' if kf['ci'][0] > lo_b else 'from'} our band's lower edge {lo_b}. The verdict "
+    f"is a band-edge call; the finding is ≈ {kf['mean']:.2f}, not two thirds. Figs. 4–5: "
+    f"gains of {100 * (1 - pooled['pos']['mean_ratio']):.1f} % (position) and "
+    f"{100 * (1 - pooled['att']['mean_ratio']):.1f} % (attitude) — set them beside the paper's "
+    "\"clearly improved\"."))
+assert kf["ci"][0] <= kf["mean"] <= kf["ci"][1]
 
 # %% [markdown]
-# Read the seeds before the statuses. Figs. 4–5 compare mean ratios a few per cent below 1 at
-# α = 0.05, so whether p falls under 0.05 depends on the seed; the pooled table gives the size
-# of the gain with its interval — set it beside the paper's "clearly improved". Fig. 6's
-# fraction lies near the band's lower edge, so its status depends on the seed too; the pooled
-# kept fraction says on which side of the edge the mean lies.
+# Read the seeds before the statuses: with gains of a few per cent, one seed's verdict is
+# chance; Fig. 6's status would change with the run count.
 #
-# **How the statuses moved.** Fig. 5 was once `reproduced` through *sandwich*, chosen after
-# seeing the results; under *pooled* it is decided above. Fig. 6 was `partial` on a point
-# estimate just above the band's edge; it is now decided on the interval.
+# **How the statuses moved.** Fig. 5 was once `reproduced` through *sandwich* (chosen after
+# seeing results); Fig. 6 `partial` on a point estimate at the band's edge. Fig. 6 and the
+# "lower" leg of Figs. 4–5 are now decided on intervals.
 #
 # ## Explore
 #
@@ -597,7 +615,9 @@ print("settings cached for the panel:", n_cached)
 # %% [markdown]
 # ## Errata and deviations
 #
-# * **Equations lost.** Eqs. (1)–(19) were images; re-derived and checked above.
+# * **Equations lost; labels are readings.** Eqs. (1)–(19) were images except (9), text
+#   ($E_{t_1t_2} = 0$, checked). Eq. (1) is in quaternion form; $C_{ct}(q)\,r_t + t$ is our
+#   reading. Eq. (2) has its origin top-left (§1); we drop the principal-point offset.
 # * **The selection rule as printed cannot select** (additivity). The primary reading
 #   (*pooled*) was fixed from the text, after earlier results had been seen (history above);
 #   the other four readings are exploratory (Holm).
@@ -651,9 +671,9 @@ ax = E.plot_budget(bud)
 bud.pivot(index="k", columns="method", values="att_median_deg")
 
 # %% [markdown]
-# This is the constructive version of the paper's idea: with a *budget* the question "which
-# points?" has a real answer, and the designed subsets beat random ones at small k; from about
-# a hundred points on the choice hardly matters.
+# With a *budget*, "which points?" has a real answer: over these scenes (medians, no
+# interval) designed subsets look better than random ones at small k; from about a hundred
+# points on the choice hardly matters.
 
 # %% [markdown]
 # ### The score's units: unit weights versus dimensionless weights
@@ -676,18 +696,21 @@ print(f"{len(wst)} runs; kept fraction: unit weights {wst['frac_unit'].mean():.3
       f"scaled {wst['frac_scaled'].mean():.3f}")
 
 # %% [markdown]
-# The weights move the score's balance (method section) but, in the pooled reading, the
-# estimated σ̂² — common to all seven terms — drives which points are kept: compare the kept
-# fractions and intervals.
+# On these runs the weights change neither the kept fraction nor the errors measurably (why
+# was not isolated).
 #
 # ### Robust pose on a user's scene
 #
-# Scenes nobody tuned the paper's chain to (`eotrack.pose.random_pnp_scene`): 60 non-planar
-# points, a pixel camera with an off-centre principal point, 8–15 m, noise 0.3–1.5 px, 30 %
-# mismatches. `ransac_pose` with the default `RansacConfig`: P3P hypotheses, adaptive stopping
-# by eq. (2) with the running inlier ratio (capped), local optimisation of the best hypothesis
-# and a Cauchy-weighted final refinement; `RansacConfig.paper()` is the paper's reading, used
-# by the reproduction. Against `cv2.solvePnPRansac` + `cv2.solvePnPRefineLM`:
+# Scenes unlike the paper's (`eotrack.pose.random_pnp_scene`): 60 non-planar points, a pixel
+# camera with an off-centre principal point, 8–15 m, noise 0.3–1.5 px, 30 % mismatches.
+# `ransac_pose` defaults: P3P hypotheses, a **scale-aware** inlier threshold
+# $\tau = k\hat\sigma$ ($\hat\sigma$ from the best hypothesis' residuals: any image unit),
+# the Fischler–Bolles draw count (notebook 01, its eq. 2), local optimisation of the *final*
+# best hypothesis (once, not on every new best as in LO-RANSAC [13]) and a Cauchy refinement.
+# **In-sample:** $k = 4$ was chosen on this family (benchmark seed), so the first table is the
+# tuning family; the second is out of family (noisier, 20 points / 50 % mismatches at
+# f = 400 px, millimetres). OpenCV: `solvePnPRansac` + `solvePnPRefineLM`, 8 px (in mm for the
+# mm row).
 
 # %%
 import cv2
@@ -697,8 +720,9 @@ rng_f = np.random.default_rng(606)
 family = [random_pnp_scene(rng_f) for _ in range(40)]
 
 
-def _cv_pose(s, i):
-    okc, rv, tv, idx = cv2.solvePnPRansac(s.points, s.pixels, s.K, None)
+def _cv_pose(s, i, thr=8.0):
+    okc, rv, tv, idx = cv2.solvePnPRansac(s.points, s.pixels, s.K, None,
+                                          reprojectionError=thr)
     if not okc or idx is None:
         return None
     rv, tv = cv2.solvePnPRefineLM(s.points[idx.ravel()], s.pixels[idx.ravel()], s.K, None, rv,
@@ -734,9 +758,41 @@ fam_table
 # %%
 assert fam_table.loc["ransac_pose (defaults)", "found (< 5°)"] >= 0.95 * len(family)
 
+# %%
+from dataclasses import replace as _replace
+
+rng_h = np.random.default_rng(707)
+_mm = np.diag([0.005, 0.005, 1.0])
+held = {"σ 2–4 px": ([random_pnp_scene(rng_h, sigma_px=(2.0, 4.0)) for _ in range(30)], 8.0),
+        "20 points, 50 % out, f = 400 px": (
+            [random_pnp_scene(rng_h, n_points=20, outlier_fraction=0.5, focal_px=400.0)
+             for _ in range(30)], 8.0),
+        "design family in mm (5 µm pixels)": (
+            [_replace(s, pixels=0.005 * s.pixels, K=_mm @ s.K) for s in family[:30]], 0.04)}
+held_rows = {}
+for fam_name, (scenes, thr_cv) in held.items():
+    for name, fn in (("ransac_pose (defaults)", _ours),
+                     ("cv2.solvePnPRansac + LM", lambda s, i, thr=thr_cv: _cv_pose(s, i, thr))):
+        res_h = [fn(s, i) for i, s in enumerate(scenes)]
+        e = np.array([(rotation_error_deg(r[0], s.R), np.linalg.norm(r[1] - s.t)) if r else
+                      (np.inf, np.inf) for r, s in zip(res_h, scenes)])
+        held_rows[(fam_name, name)] = {"found (< 5°)": int(np.sum(e[:, 0] < 5)),
+                                       "of": len(scenes),
+                                       "median rotation error (deg)": np.median(e[:, 0]),
+                                       "median position error (m)": np.median(e[:, 1])}
+held_table = pd.DataFrame(held_rows).T
+held_table
+
 # %% [markdown]
-# The 200-scene version, with timings against OpenCV's on one thread, is
-# `benchmarks/bench_ransac_crlb_pose.py` (`make bench`).
+#
+# %%
+_ours_rows = held_table.xs("ransac_pose (defaults)", level=1)
+assert (_ours_rows["found (< 5°)"] >= 0.9 * _ours_rows["of"]).all()
+
+# %% [markdown]
+# Timings and six held-out families: `benchmarks/bench_ransac_crlb_pose.py` (`make bench`;
+# one family failed at first, the threshold's sanity cap was changed, two fresh families
+# checked it).
 #
 # ## Key points
 #
@@ -808,9 +864,9 @@ if answer is not None:
     display(check("ransac_crlb_pose.4", answer))
 
 # %% [markdown]
-# **5 (critique).** Why can the rule as printed never drop a point? **6 (critique).** Which
-# reading did we pre-register, and why from the text? Answer with a letter; the options are in
-# the questions.
+# **5 (transfer).** If every point's σ_i were known, could the exact CRLB rule drop a noisy
+# point? **6 (critique).** If eq. (5) had per-point σ_i, which reading would the protocol's
+# textual argument pick? Answer with a letter; the options are in the questions.
 
 # %%
 for k in (5, 6):
@@ -824,6 +880,11 @@ if answer6 is not None:
 
 # %% [markdown]
 # Worked solutions: `notebooks/solutions/06_ransac_crlb_pose_solutions.ipynb`.
+#
+# ## Closing note: independent review
+#
+# An independent review (issue 29) found **14** defects (1 high, 5 medium, 8 low): **fixed
+# 14, left 0**.
 #
 # ## References
 #

@@ -175,9 +175,15 @@ print("both intervals contain 1:", both_contain_one, "| intervals overlap:", ove
 
 # %%
 assert check("ransac_crlb_pose.5", "b")
-assert check("ransac_crlb_pose.6", "c")
+assert check("ransac_crlb_pose.6", "b")
 
 # %% [markdown]
-# (5) Additivity of Fisher information. (6) *pooled*: eq. (5) has one σ² for all points; a
-# constant σ² makes the score monotone, so the only way the printed rule can drop a point is
-# through a σ² estimated from the data — which is also the only option open to a real system.
+# (5) (b). Known σ_i only scale each point's term $G_i^\top G_i/\sigma_i^2$; a noisy point adds
+# little information, but never a negative amount, so the exact CRLB still falls (or stays) and
+# the point is kept — whatever the order. (a) is the intuition the paper's Fig. 6 relies on,
+# and it is false for the exact bound.
+#
+# (6) (b). With known σ_i the exact CRLB is still monotone (exercise 5), so 'as printed' keeps
+# everything; the score that can rise is the covariance of the *unweighted* pose with those σ_i
+# (the sandwich), and it no longer needs anything outside the model. 'pooled' (our actual
+# choice, c) was picked because eq. (5) has one unknown σ² — with known σ_i that reason is gone.
