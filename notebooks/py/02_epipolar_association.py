@@ -13,28 +13,25 @@
 # method under distributed star sensors.* Chinese Journal of Scientific Instrument.
 # [DOI 10.19650/j.cnki.cjsi.J1905157](https://doi.org/10.19650/j.cnki.cjsi.J1905157) [1]
 #
-# **What the paper does.** Star sensors on many satellites can double as surveillance
-# cameras. To locate an object, images taken *at the same instant* by sensors on different
-# satellites must be matched — featureless dots with no time history. The paper matches them
-# by the **epipolar constraint** alone: from each sensor's known orbit position, attitude and
-# intrinsics it builds the fundamental matrix of every pair of images, accepts a dot within
-# $L$ pixels of the other dot's epipolar line, keeps the nearest, merges the pairs into one
-# table of targets and triangulates each. The experiment: four LEO satellites, 2°×2°
-# sensors, nine GEO objects.
+# **What the paper does.** Star sensors on several satellites image the same instant; the
+# featureless dots must be matched across images. The paper uses the **epipolar constraint**
+# alone: from known poses and intrinsics it builds the fundamental matrix of every image
+# pair, accepts a dot within $L$ pixels of the other dot's epipolar line, keeps the nearest,
+# merges the pairs into one table of targets and triangulates each. Experiment: four LEO
+# satellites, 2°×2° sensors, nine GEO objects.
 #
 # ## Learning objectives
 #
 # After this notebook you can
 # - build the fundamental matrix of two cameras from their poses (eqs. 2–5) and check it;
 # - compute point-to-epipolar-line distances (eq. 8) and associate points one-to-one;
-# - explain how the threshold $L$ trades missed against false associations, and derive $L$
-#   from an error budget instead of guessing it;
-# - triangulate a target from two lines of sight and say why short baselines hurt;
+# - explain how $L$ trades missed against false associations, and derive $L$ from an error
+#   budget;
+# - triangulate from two lines of sight and say why short baselines hurt;
 # - spot when a rule (3σ rejection) or a number (10 mrad jitter) in a paper cannot be right.
 #
-# **Prerequisites.** Pinhole cameras and rotation matrices; notebook 01 for the Monte Carlo
-# conventions of the collection. The epipolar geometry is derived here (Hartley–Zisserman [2]
-# has the background).
+# **Prerequisites.** Pinhole cameras, rotation matrices; notebook 01 for the Monte Carlo
+# conventions. Background: Hartley–Zisserman [2].
 
 # %%
 from eotrack.notebook import lesson_header
@@ -73,7 +70,7 @@ from eotrack.geometry import (
     triangulate_rays,
     triangulate_two_rays,
 )
-from eotrack.montecarlo import TrialRunner, run_trials
+from eotrack.montecarlo import TrialRunner, binomial_interval, run_trials
 from eotrack.notebook import dropdown, float_slider, panel, setup_notebook, versions
 from eotrack.plotting import legend_outside
 
@@ -109,15 +106,14 @@ versions()
 #
 # ### 1. The scene: four sensors and nine GEO objects (paper Figs. 1–2)
 #
-# The elements of Table 1 are given *at the association instant*, so two-body states are all
-# we need. Check: each state's energy is $-\mu/2a$.
+# Table 1's elements are given *at the association instant*: two-body states suffice
+# (check: energy $-\mu/2a$).
 #
-# The paper's STK scene is known only through its pixels (Table 3) and two true positions
-# (Table 5). We rebuild it: GEO1 sits at its Table 5 position, and sensor 4 is aimed so that
-# GEO1 lands on its Table 3 pixel; every other object sits where sensor 4's line of sight
-# through its Table 3 pixel meets the GEO shell through GEO1; sensors 1–3 are turned to see
-# exactly the objects Table 3 lists. So GEO5 follows Table 3, not Table 5 — the two tables
-# disagree about it (section *Tables 3 and 5 disagree*, with what the other choice changes).
+# The paper's STK scene is known only through Table 3's pixels and Table 5's two positions.
+# We rebuild it: GEO1 at its Table 5 position, sensor 4 aimed to put it on its Table 3 pixel;
+# every other object where sensor 4's ray through its Table 3 pixel meets the GEO shell
+# through GEO1; sensors 1–3 turned to see exactly Table 3's objects. So GEO5 follows Table 3,
+# not Table 5 — the tables disagree (section *Tables 3 and 5 disagree*).
 
 # %%
 P = E.paper_values()
@@ -134,10 +130,9 @@ pd.DataFrame(scen.visible.astype(int), index=[f"map {k + 1}" for k in range(4)],
              columns=scen.names)
 
 # %% [markdown]
-# Two sensors and a target span the **epipolar plane**, which contains the baseline
-# $O_1O_2$. Every point on sensor 1's line of sight projects into image 2 onto one line — the
-# plane's trace, the *epipolar line* — so the target's image 2 must lie on it. That is the
-# whole association test. Drawn from the scenario, at true scale:
+# Two sensors and a target span the **epipolar plane** through the baseline $O_1O_2$. Sensor
+# 1's line of sight projects into image 2 onto one line, the *epipolar line*, and the
+# target's image 2 must lie on it: the whole association test. At true scale:
 
 # %%
 fig = E.plot_epipolar_geometry(scen, pair=(0, 3), target=4)
@@ -149,8 +144,10 @@ fig = E.plot_epipolar_geometry(scen, pair=(0, 3), target=4)
 # the satellite's position and velocity) → body (the attitude angles) → sensor (how it is
 # mounted). The paper writes the attitude step as a product of *passive* rotations
 #
-# $$ r = R_z(Y)\,R_y(P)\,R_x(R),\quad
-#   R_z(Y)=\begin{bmatrix}\cos Y&\sin Y&0\\-\sin Y&\cos Y&0\\0&0&1\end{bmatrix},\ \dots
+# $$ r = R_z(Y)\,R_y(P)\,R_x(R)=
+#   \begin{bmatrix}\cos Y&\sin Y&0\\-\sin Y&\cos Y&0\\0&0&1\end{bmatrix}
+#   \begin{bmatrix}\cos P&0&-\sin P\\0&1&0\\\sin P&0&\cos P\end{bmatrix}
+#   \begin{bmatrix}1&0&0\\0&\cos R&\sin R\\0&-\sin R&\cos R\end{bmatrix}
 #   \qquad(4)$$
 #
 # Only the product enters $F$; the mounting (not in the paper) is assumed for illustration.
@@ -244,10 +241,10 @@ np.testing.assert_allclose(epipolar_distances(-37.0 * F, p1, p2), d)
 # %% [markdown]
 # ### 6. Association (steps 4–5) and the summary table (step 6)
 #
-# Each point keeps its nearest candidate, and each point is used once. We run this as a
-# greedy pass over all candidate pairs in increasing distance ("nearest wins, one-to-one").
-# The global alternative, `rule="hungarian"` [4], maximises the number of pairs first. They
-# differ when the nearest candidate is the only candidate of another point:
+# Each point keeps its nearest candidate, each point used once: one greedy pass over all
+# candidate pairs in increasing distance (errata). The global `rule="hungarian"` [4]
+# maximises the number of pairs first. They differ when the nearest candidate is another
+# point's only one:
 
 # %%
 # NBVAL_CHECK_OUTPUT
@@ -282,11 +279,10 @@ np.testing.assert_allclose(triangulate_rays(np.stack([c.c for c in scen.cameras]
                                             np.stack(rays)), Xt, atol=0.5)
 
 # %% [markdown]
-# With $N$ sensors there are $C_N^2$ pairwise estimates; the paper discards any estimate
-# with a coordinate more than 3 standard deviations from the mean. **That rule cannot fire for
-# $n \le 10$ estimates**: the largest possible $|x_i - \bar x|/s$ among $n$ samples is
-# $(n-1)/\sqrt n$ (one sample against $n-1$ equal ones; $s$ with $n-1$ in the denominator) —
-# Samuelson's inequality [7]. Exercise 1 asks you to derive it.
+# With $N$ sensors there are $C_N^2$ pairwise estimates; the paper discards any with a
+# coordinate beyond 3 standard deviations of the mean. **That rule cannot fire for
+# $n \le 10$**: the largest possible $|x_i - \bar x|/s$ among $n$ samples is
+# $(n-1)/\sqrt n$ ($s$ with $n-1$; Samuelson's inequality [7]; exercise 1).
 # `combine_estimates(rule="mad")` (median ± k·MAD) can reject:
 
 # %%
@@ -299,12 +295,11 @@ print("paper rule keeps", combine_estimates(est, rule="paper").kept.tolist(),
 # %% [markdown]
 # ### 8. The errors injected (§2.1)
 #
-# * **Attitude:** uniform noise within ±1′ on each angle of eq. (4) — the largest error.
+# * **Attitude:** uniform within ±1′ on each angle of eq. (4).
 # * **Position:** uniform in a 0.2 km ball.
-# * **Jitter:** the paper prints "10 mrad" (in pixels below); we read 10 µrad, about the
-#   sensor's noise-equivalent angle.
-# * **False targets:** "random false targets", number unstated: we add three per map.
-# * **Distortion:** in the true projection only; the associator ignores it, as in the paper.
+# * **Jitter:** printed "10 mrad" (below); we read 10 µrad, about the noise-equivalent angle.
+# * **False targets:** number unstated; three per map.
+# * **Distortion:** in the true projection only; the associator ignores it.
 
 # %%
 err = E.ErrorConfig()
@@ -343,13 +338,12 @@ assert all(np.array_equal(by_hand[k], draw.matches[k][0]) for k in E.PAIRS)
 draw.scores
 
 # %% [markdown]
-# `true` counts the objects both maps see; `false` associations involve a false target or
-# the wrong object.
+# `true`: objects both maps see; `false`: associations with a false target or wrong object.
 #
 # ## Reproduction
 #
-# The Monte Carlo behind Fig. 5 and Tables 3–5 (one `scenario_trial` per seeded draw), and the
-# Fig. 6 simulations — the same configuration and seeds as `make repro`:
+# The Monte Carlo behind Fig. 5 and Tables 3–5, and the Fig. 6 simulations — the
+# configuration and seeds of `make repro`:
 
 # %%
 runner = TrialRunner(progress=False)
@@ -393,19 +387,16 @@ fig = E.plot_fig3(scen, draw.obs, images)
 fig = E.plot_fig4(scen, draw.obs, draw.matches)
 
 # %% [markdown]
-# False targets and objects seen by only one sensor of a pair often fall within 10 px of a
-# foreign epipolar line: false associations like the paper's Fig. 4(e) are common. In some
-# pairs two *objects* lie almost on each other's lines (below), so noise can make a wrong
-# candidate the nearest:
+# False targets and objects seen by one sensor of a pair often fall within 10 px of a foreign
+# epipolar line, so false associations like Fig. 4(e) are common. Some *objects* lie almost on
+# each other's lines:
 
 # %%
 pd.Series(E.closest_other_object_px(scen),
           name="closest other object to an epipolar line, noise-free (px)").to_frame()
 
 # %% [markdown]
-# Which of the two ways of losing a true pair matters? Separate them over all the draws: a
-# true pair farther than $L$ from its line (noise), or one whose point was taken first by a
-# nearer wrong candidate (the rest of the misses).
+# How are true pairs lost: beyond $L$ (noise), or taken by a nearer wrong candidate?
 
 # %%
 true_d_all = np.concatenate([o["true_d"] for o in mc.trials])
@@ -420,9 +411,9 @@ display(Markdown(
 # %% [markdown]
 # ### Table 3 — the summary table
 #
-# Paper's pixels beside the rows our summary produced in the displayed draw. Map 4 matches by
-# construction; maps 1–3 do not. How far, noise-free, is each object's true pixel from
-# Table 3's?
+# Paper's pixels beside our noise-free true pixels, and the displayed draw's rows for each
+# object, each element labelled by its true identity (`false`: a false target, `·`: none).
+# Map 4 matches by construction; maps 1–3 do not — by how much?
 
 # %%
 E.table3(scen, draw)
@@ -440,10 +431,9 @@ display(Markdown(f"|our pixel − Table 3's| (px), noise-free. Largest: "
 miss
 
 # %% [markdown]
-# Is that our fit's fault? Free each sensor's attitude entirely (no visibility constraint) and
-# find the rotation that best maps the directions to the objects onto the rays of Table 3's
-# pixels (Wahba's problem, `scipy.spatial.transform.Rotation.align_vectors`). The residuals of
-# that best rotation are what no attitude can remove, with the objects where map 4 puts them:
+# Is that our fit's fault? Free each sensor's attitude entirely and find the rotation that
+# best maps the object directions onto Table 3's rays (Wahba's problem,
+# `Rotation.align_vectors`); its residuals are what no attitude can remove:
 
 # %%
 from scipy.spatial.transform import Rotation
@@ -490,10 +480,9 @@ t4 = E.table4(draw, mc)
 t4
 
 # %% [markdown]
-# The claim is an ordering — noisy farther than noise-free — so it is decided over all the
-# draws, not on the displayed one: each draw has a noise-free twin with the *same* false
-# targets (common random numbers), and the paired difference per map pair gets a t interval
-# at family-wise 95 % (Bonferroni over the five pairs that share objects):
+# The claim is an ordering, so it is decided over all draws: each draw has a noise-free twin
+# with the *same* false targets (common random numbers); the paired difference per map pair
+# gets a t interval at family-wise 95 % (Bonferroni over the five pairs sharing objects):
 
 # %%
 t4p = E.table4_paired(scen, mc)
@@ -504,39 +493,57 @@ t4p_show
 
 # %% [markdown]
 # Every interval lies above zero: noise does push associated points away from their lines.
-# The *levels* differ from the paper's, though. Noise-free, our correct pairs sit at ≈ 0 px
-# (only the lens distortion the associator ignores), and our noise-free means come from false
-# associations alone; the paper's noise-free 0.2–3.9 px need an error the paper does not
-# state. One candidate is the whole-pixel centroids Table 3 prints: rounding each coordinate
-# moves a point by a uniform ±0.5 px per axis. The same draws with rounded centroids:
+# The *levels* do not match, and the error budget (Beyond) says why: a true pair's signed
+# distance is roughly Gaussian with the pair's σ_d, so its mean |d| is σ_d√(2/π).
 
 # %%
-mc_q = E.run_scenario_draws(scen, E.ErrorConfig(quantize=True), E.THRESHOLDS, L,
-                            N_BEYOND, runner=runner)
-paper_free = np.asarray(P["epipolar.table4"]["mean_distance_noise_free_px"])
+p4 = P["epipolar.table4"]
+sig_pair = E.distance_sigma_px(scen, err).groupby("pair")["sigma_px"].mean()
+paper_noisy = pd.Series(p4["mean_distance_noisy_px"], index=p4["pairs"])
 with warnings.catch_warnings():
     warnings.simplefilter("ignore", RuntimeWarning)  # pair (d) has no correct pairs
-    noise_free_cmp = pd.DataFrame({
-        "pair": P["epipolar.table4"]["pairs"], "paper noise-free (px)": paper_free,
-        "ours, correct pairs (px)": np.nanmean(mc.stack("mean_d0_true"), 0),
-        "ours, correct pairs, rounded centroids (px)": np.nanmean(mc_q.stack("mean_d0_true"), 0),
-        "ours, all associated, rounded (px)": np.nanmean(mc_q.stack("mean_d0"), 0)})
-assert np.nanmax(noise_free_cmp["ours, correct pairs (px)"]) < 0.05
-rounded = noise_free_cmp["ours, correct pairs, rounded centroids (px)"]
-assert np.nanmax(rounded) < 0.6 < np.nanmax(paper_free)  # the prose below relies on it
-noise_free_cmp.round(3)
+    ours_true = pd.Series(np.nanmean(mc.stack("mean_d_true"), 0), index=p4["pairs"])
+levels = pd.DataFrame({"σ_d (px)": sig_pair,
+                       "σ_d√(2/π) (px)": sig_pair * np.sqrt(2 / np.pi),
+                       "ours noisy, correct pairs (px)": ours_true,
+                       "paper noisy (px)": paper_noisy,
+                       "σ_d the paper's mean needs (px)": paper_noisy / np.sqrt(2 / np.pi)})
+levels["needed / our σ_d"] = levels.iloc[:, 4] / levels.iloc[:, 0]
+levels = levels.dropna(subset=["σ_d (px)"])
+# the scheme the old criterion used: the displayed draw's noisy means in 1–10 px
+disp_noisy = draw.scores.set_index("pair")["mean_distance_px"]
+old_fail = disp_noisy[(disp_noisy <= 1) | (disp_noisy >= 10)]
+assert len(old_fail) >= 1  # the prose below relies on it
+display(Markdown(
+    f"The prediction meets our correct pairs to within "
+    f"{100 * np.nanmax(np.abs(levels.iloc[:, 2] / levels.iloc[:, 1] - 1)):.0f} %. The "
+    f"paper's noisy means would need σ_d "
+    f"{levels['needed / our σ_d'].min():.1f}–{levels['needed / our σ_d'].max():.1f} times "
+    f"ours — larger errors than a uniform ±1′ (even read as rms, the attitude term grows "
+    f"only √3 = {3**0.5:.2f}×). So the claim is scored **partial**: ordering yes, level no "
+    f"(the criterion asks 0.5–2 times the paper's). That level band was set after results "
+    f"(report, history); under the first, one-draw criterion the displayed draw's "
+    f"{old_fail.index[0]} noisy mean {old_fail.iloc[0]:.3f} px lies outside its 1–10 px, "
+    "so no version of the criterion made this claim reproduced."))
+levels.round(3)
 
 # %% [markdown]
-# Rounding explains a few tenths of a pixel — the paper's 4(f) 0.237 px — but not 1–4 px
-# (4(c), 4(e)); those need false associations in the paper's noise-free run (our all-pairs
-# column) or an unstated model error. We do not score the noise-free level; the ordering
-# claim stands on the paired intervals.
-#
+# Noise-free, our correct pairs sit at ≈ 0 px (only the ignored lens distortion), so our
+# noise-free means come from false associations alone. The paper's 0.2–3.9 px need an
+# unstated error; it does report a false association in that run ("图4(e)中,星图2的一个伪目标
+# 与星图4的GEO3被判定为关联"). Whole-pixel centroids explain a few tenths of a pixel
+# (*Beyond*). The noise-free level is not scored.
+
+# %%
+with warnings.catch_warnings():
+    warnings.simplefilter("ignore", RuntimeWarning)
+    assert np.nanmax(np.nanmean(mc.stack("mean_d0_true"), 0)) < 0.05  # prose above
+
+# %% [markdown]
 # **Row 4(a).** The extracted Table 4 row (a) holds a single number, 1.387, with nothing to say
 # which column it belongs to. By size it fits the paper's noise-free column, not its noisy one:
 
 # %%
-p4 = P["epipolar.table4"]
 lone = p4["row_a_unplaced_px"]
 free_rng = np.nanmin(p4["mean_distance_noise_free_px"]), np.nanmax(p4["mean_distance_noise_free_px"])
 noisy_rng = np.nanmin(p4["mean_distance_noisy_px"]), np.nanmax(p4["mean_distance_noisy_px"])
@@ -545,7 +552,8 @@ display(Markdown(f"1.387 px against the other rows: noise-free {free_rng[0]:.3f}
                  f"{noisy_rng[0]:.3f}–{noisy_rng[1]:.3f} px (inside: "
                  f"{noisy_rng[0] <= lone <= noisy_rng[1]}). We leave it unplaced (NaN in both "
                  "columns of claims.toml) and compare no number with it."))
-#
+
+# %% [markdown]
 # ### Fig. 5 — threshold versus error rate
 
 # %%
@@ -554,27 +562,39 @@ ax = E.plot_fig5(sw.thresholds, sw.accuracy, sw.false_rate, sw.miss_rate, sw.err
                  paper=P["epipolar.fig5"])
 
 # %% [markdown]
-# Both Fig. 5 readings get a bootstrap interval over the draws (the draws resampled with
-# replacement, 2,000 times) at family-wise 95 % — 97.5 % each, since two readings are
-# compared: the threshold of smallest total error, and the best correct rate inside the
-# paper's 8–12 px.
+# What is "≈ 90 % correct"? The paper counts the falsely associated pairs among its 1,032
+# **associated** pairs (误判率): its 90 % is correct *of the associated pairs*. Our first
+# criterion used correct *of the true pairs*, the reading that favours the paper. The
+# criterion now requires both (set after results, so the stricter conjunction; either alone
+# would be exploratory). Bootstrap intervals over the draws (2,000 resamples) at family-wise
+# 95 % (98.3 % each) for the best threshold and the best in-band rate of each reading:
 
 # %%
 boot5 = E.fig5_bootstrap(mc, tuple(P["epipolar.fig5"]["best_threshold_px"]),
-                         confidence=1 - 0.05 / 2)
+                         confidence=1 - 0.05 / 3)
 f5 = E.fig5_summary(sw, boot5)
 assert 0.80 < f5.loc[0, "ours"] < 0.95  # Monte Carlo: checked with a tolerance
+assert boot5["prec_ci"][1] < 0.85  # the prose below relies on it
 assert boot5["best_L_ci"][1] < P["epipolar.fig5"]["best_threshold_px"][0]  # prose below
+n_assoc = float(sw.n_associated[sw.thresholds == L][0])
+display(Markdown(
+    f"Per group: the paper's {P['epipolar.fig5']['n_associated_pairs']} associated pairs over "
+    f"{P['epipolar.fig5']['n_groups']} groups are "
+    f"{P['epipolar.fig5']['n_associated_pairs'] / P['epipolar.fig5']['n_groups']:.2f} per "
+    f"group; ours at L = {L:g} px are {n_assoc / mc.n_draws:.1f} per four-map draw and "
+    f"{n_assoc / mc.n_draws / len(E.PAIRS):.2f} per map pair."))
 f5
 
 # %% [markdown]
-# Small thresholds miss true pairs and large ones admit false pairs, as the paper says, and
-# the best correct rate in 8–12 px comes within a few points of the paper's ≈ 90 % (its
-# interval is in the table; whether it clears the criterion's 85 % varies with the seed — the
-# report marks the claim *fragile*). The total error is smallest well below 8–12 px, and the
-# interval of that best threshold excludes the paper's band: the optimum follows the spread
-# of the true-pair distances, which the attitude error sets. *Beyond the paper* shows where
-# 8–12 px could come from.
+# Small thresholds miss true pairs and large ones admit false pairs, as the paper says. In
+# the paper's reading our best rate in 8–12 px is far below 90 % (interval below 85 %); only
+# the true-pair reading comes near. The best threshold's interval excludes 8–12 px. Not
+# reproduced in either reading.
+#
+# The paper's "group" is not our four-map draw: its associated pairs per group match ours
+# per *map pair* (above). Pooled rates do not depend on the grouping, and the candidates per
+# epipolar band, which set the false share, are those of our map pairs — but the paper's
+# number of false targets per map is unstated.
 #
 # ### Fig. 6 — the Monte Carlo bound on false association
 #
@@ -600,9 +620,8 @@ assert np.allclose(f6["ours MC (overlapping views)"], f6["binomial (overlapping)
 f6
 
 # %% [markdown]
-# Both simulations agree with their expectation, and neither comes near the paper's values:
-# a 5 px band around a line crossing the image already holds about two foreign points. The
-# paper's level depends on unstated choices; the binomial formula predicts it for any.
+# Both simulations agree with their expectation; neither comes near the paper: a 5 px band
+# around a line crossing the image already holds about two foreign points.
 #
 # ### Table 5 — triangulation of GEO1 and GEO5 (J2000, km)
 
@@ -611,10 +630,9 @@ t5, estimates = E.table5(scen, draw)
 t5
 
 # %% [markdown]
-# Under Table 3 only sensors 1 and 4 see GEO1, so only the 1&4 estimate exists. Our errors
-# are far above 3 km. The picture shows why: two nearly parallel lines of sight, each missing
-# by about 1′ × 36,000 km; their closest approach is short, but the midpoint slides far
-# along them.
+# Under Table 3 only sensors 1 and 4 see GEO1: one estimate. Our errors are far above 3 km:
+# two nearly parallel lines of sight, each missing by about 1′ × 36,000 km, whose midpoint
+# slides far along them.
 
 # %%
 ax = E.plot_triangulation(scen, draw.obs, pair=(0, 3), target=4)
@@ -632,7 +650,7 @@ display(Markdown(f"Over {mc.n_draws} draws, the median largest coordinate error 
 # ### Fig. 8 — the two objects in J2000
 
 # %%
-ax = E.plot_fig8(scen, estimates)
+ax = E.plot_fig8(scen, estimates, paper=P["epipolar.table5"])  # diamonds: the paper's
 
 # %% [markdown]
 # ### Tables 3 and 5 disagree — which table each object follows, and what the other choice changes
@@ -671,6 +689,7 @@ contradiction = pd.DataFrame({
            "GEO1–GEO5 in map 4 (px)", "GEO5 pixel in map 4 (u, v)",
            "maps that see GEO5 (our pointings)"])
 assert uv5_t5[1] > cam4.size[1] and not sees_t5[3]  # Table 5's GEO5 falls outside image 4
+assert sees_t5 == [True, False, False, False]  # the prose below relies on it
 display(Markdown(f"Our GEO5 is {np.linalg.norm(scen.objects_km[4] - geo5_t5):.0f} km from "
                  f"Table 5's; seen from Sat4, Table 5's GEO1–GEO5 angle is "
                  f"{np.radians(ang['t5']) * cam4.K[0, 0]:.0f} px, but Table 3 puts them "
@@ -678,18 +697,14 @@ display(Markdown(f"Our GEO5 is {np.linalg.norm(scen.objects_km[4] - geo5_t5):.0f
 contradiction
 
 # %% [markdown]
-# **Which table each object follows, and why.** GEO1 follows both (Table 5's position, on
-# its Table 3 pixel of map 4 by the choice of sensor 4's pointing). GEO2–GEO9, GEO5 included,
-# follow Table 3's map 4 (on the GEO shell through GEO1). Table 3 is the input of everything
-# the paper tests — Figs. 3–5 and Tables 3–4 depend on who sees whom — while Table 5 is an
-# output. Placed at its Table 5 position, GEO5 leaves image 4 (v above 512) and, with our
-# pointings (fit to Table 3), is seen only by the maps in the table's last row, so Table 5's
-# own pairs for GEO5 (1&3, 1&4, 3&4) could not be formed without re-pointing the sensors away
-# from Table 3's pixels.
+# **Which table each object follows.** GEO1 follows both (Table 5's position, on its Table 3
+# pixel of map 4 by sensor 4's pointing); GEO2–GEO9, GEO5 included, follow Table 3's map 4.
+# Table 3 is the input of everything the paper tests (who sees whom), Table 5 an output. At
+# its Table 5 position GEO5 leaves image 4 (v > 512) and is seen only by map 1 (last row), so
+# Table 5's own pairs for GEO5 could not be formed without re-pointing the sensors.
 #
-# **What the other choice changes.** Fig. 8's criterion (each error below a tenth of the
-# separation) scales with the separation. Keeping our triangulation errors and reading the
-# criterion at the paper's separation instead of ours:
+# **What the other choice changes.** Fig. 8's criterion scales with the separation. Our
+# triangulation errors read at the paper's separation:
 
 # %%
 tri = mc.stack("tri_err_km")
@@ -703,15 +718,17 @@ fig8_alt = pd.DataFrame({
     f"share of {mc.n_draws} draws resolving both": [
         float(np.mean(np.all(tri < v / 10, axis=1))) for v in (sep["ours"], sep["t5"])]},
     index=["GEO5 from Table 3 (ours)", "GEO5 from Table 5"])
-assert not fig8_alt["displayed draw resolves both"].any()  # the prose below relies on it
+k8 = (fig8_alt.iloc[:, -1] * mc.n_draws).round().astype(int)
+ci8 = [binomial_interval(k, mc.n_draws, confidence=0.95) for k in k8]
+fig8_alt["95 % Wilson interval"] = [f"{lo:.3f}–{hi:.3f}" for lo, hi in ci8]
+assert all(hi < 0.5 for _, hi in ci8)  # the prose below relies on it
 fig8_alt.round(3)
 
 # %% [markdown]
-# At the paper's separation more draws resolve the two objects (table), but the displayed
-# draw's errors still exceed a tenth of it, so Fig. 8's status does not change. Do the
-# triangulation errors themselves depend on where GEO5 sits? Triangulate it at both
-# positions from each sensor pair under the same ±1′ attitude noise (visibility ignored,
-# 400 draws, common random numbers):
+# At the paper's separation more draws resolve the two objects, but still fewer than half
+# (interval below 0.5): Fig. 8's status does not change. Do the errors depend on where GEO5
+# sits? Triangulate it at both positions from each pair under ±1′ attitude noise (visibility
+# ignored, 400 draws, common random numbers):
 
 # %%
 from eotrack.geometry import PinholeCamera, euler_321_from_matrix
@@ -744,9 +761,10 @@ display(Markdown(f"Table 5 position / ours: {ratio.min():.2f}–{ratio.max():.2f
 geo5_move.round(1)
 
 # %% [markdown]
-# The errors are set by attitude noise, range and baselines, which GEO5's move hardly
-# changes (ratio above): following Table 5 instead of Table 3 would change Fig. 8's
-# separation, not Table 5's verdict.
+# The errors hardly change (ratio above) — but this ignores visibility: at its Table 5
+# position GEO5 is seen by map 1 only and could not be triangulated at all. GEO5 also shapes
+# the association: its epipolar line nearly passes through another object's image, and such
+# near-coincidences cause every lost true pair (*Beyond*, with perturbed placements).
 #
 # ## Scorecard
 #
@@ -758,8 +776,10 @@ rep = E.score(scen, draw, mc, res6, errors=err, settings={"quick": QUICK})
 
 # %%
 # NBVAL_CHECK_OUTPUT
-for row in rep.claims:
-    print(f"{row.claim:18s} {row.status}")
+for row in rep.claims:  # checks verify our construction: pass / fail
+    shown = ("pass" if row.status == "reproduced" else "fail") if row.kind == "check" \
+        else str(row.status)
+    print(f"{row.claim:18s} {row.kind:7s} {shown}")
 print(rep.status_summary())
 
 # %%
@@ -768,11 +788,10 @@ rep.scorecard[["claim", "paper", "ours", "status", "note"]]
 # %% [markdown]
 # ## Explore
 #
-# **The key trade-off: the threshold $L$.** Left: missed and false associations (per true
-# pair) against $L$, with the error-budget gate (green, see *Beyond*) as the recommendation.
-# Right: distances of the pairs the paper's rule accepts. Where does the total error bottom
-# out? What happens when the attitude error doubles, or without false targets? Each error
-# setting is simulated once (60 draws, said in the title); moving $L$ only re-counts.
+# **The key trade-off: the threshold $L$.** Left: missed and false associations per true
+# pair against $L$, with the error-budget gate (green, *Beyond*). Right: distances of the
+# accepted pairs. Where does the total error bottom out? With doubled attitude error, or no
+# false targets? Each setting is simulated once (60 draws); moving $L$ only re-counts.
 
 # %%
 ATTITUDES = {"±0.5′": 0.5, "±1′ (paper)": 1.0, "±2′": 2.0}
@@ -808,6 +827,8 @@ explore = panel(view,  # a change only re-counts the stored distances and redraw
 # | §3 | reject estimates beyond 3σ | cannot reject anything with ≤ 10 estimates |
 # | Fig. 6 | image size, F and point distributions unstated | stated; two variants with their analytic expectation |
 # | Fig. 5 | "error rate" undefined | correct and missed per true pair, false per associated pair, total = (missed + false) per true pair |
+# | Fig. 5 | "准确率达 90%" over 1,032 *associated* pairs, axis 误判率 (false among associated) | both readings reported; the criterion (set after results) requires ≥ 85 % in both: correct of the associated pairs (the paper's) and of the true pairs |
+# | step 5 | per point: keep the nearest candidate, delete the others (depends on the order of the points) | one greedy pass over all candidate pairs in increasing distance (order-independent; section 6) |
 # | epoch | time scale unstated | UTC; J2000 ≈ GCRS |
 #
 # ## Beyond the paper
@@ -842,6 +863,27 @@ assert np.array_equal(associate(d_ex, sigma_px=sig_rms), associate(d_ex, chi2_ga
 assert np.isclose(chi2_gate(sig_rms), gate99)
 
 # %% [markdown]
+# One pooled σ_d gives one gate for all six map pairs, but σ_d differs per pair, so the
+# promise "a true pair falls outside with probability 1 − p" holds only on average. The
+# Gaussian miss probability of each pair's true pairs at the pooled gate, and each pair's own
+# gate (`associate(d, sigma_px=σ_pair)`):
+
+# %%
+from scipy.stats import norm
+
+sig_tab = E.distance_sigma_px(scen, err)
+sig_tab["miss at pooled gate"] = 2 * norm.sf(gate99 / sig_tab["sigma_px"])
+per_pair = sig_tab.groupby("pair").agg(sigma_min=("sigma_px", "min"),
+                                       sigma_max=("sigma_px", "max"),
+                                       miss_at_pooled=("miss at pooled gate", "mean"))
+per_pair["own 99 % gate (px)"] = [chi2_gate(v) for v in sig_tab.groupby("pair")["sigma_px"].max()]
+display(Markdown(f"Pooled gate {gate99:.2f} px: mean miss probability over the true pairs "
+                 f"{100 * sig_tab['miss at pooled gate'].mean():.1f} % (not 1 %), from "
+                 f"{100 * per_pair['miss_at_pooled'].min():.2f} % to "
+                 f"{100 * per_pair['miss_at_pooled'].max():.1f} % per pair."))
+per_pair.round(4)
+
+# %% [markdown]
 # The gate against the best threshold of the sweep, for several attitude errors, read as a
 # uniform bound (left) and as an rms value (right):
 
@@ -855,23 +897,110 @@ pd.concat({"attitude read as a uniform bound": gs_bound, "attitude read as rms":
 
 # %% [markdown]
 # For small attitude errors the gate and the empirical optimum roughly coincide; as errors
-# grow, false associations pull the optimum below the gate. Read as an rms, the paper's 1′
-# gives a gate inside 8–12 px (table) — a plausible origin of its threshold. *(Exploratory:
-# chosen after seeing Fig. 5; no claim's status depends on it.)*
+# grow, false associations pull the optimum below the gate. Read as rms, the paper's 1′ gives
+# a gate inside 8–12 px — a plausible origin of its threshold (*exploratory*, chosen after
+# seeing Fig. 5; no status depends on it).
+#
+# ### Where the lost true pairs come from
+#
+# Every lost true pair was taken by a nearer wrong candidate. Noise-free, which epipolar
+# lines pass within 5 px of another object's image?
+
+# %%
+from dataclasses import replace
+
+X0 = scen.true_pixels()
+near = []
+for a, b in E.PAIRS:
+    ca, cb = scen.cameras[a], scen.cameras[b]
+    both = np.flatnonzero(scen.visible[a] & scen.visible[b])
+    if len(both) < 2:
+        continue
+    F_ab = fundamental_from_poses(ca.K, ca.R, ca.c, cb.K, cb.R, cb.c)
+    d_ab = epipolar_distances(F_ab, X0[a, both], X0[b, both])
+    for i, j in zip(*np.nonzero((d_ab < 5) & ~np.eye(len(both), dtype=bool))):
+        near.append({"pair": f"{a + 1}-{b + 1}", "line of": scen.names[both[i]],
+                     "passes near": scen.names[both[j]], "distance (px)": d_ab[i, j]})
+near = pd.DataFrame(near)
+assert "GEO5" in set(near["line of"]) | set(near["passes near"])  # the prose relies on it
+near.round(2)
+
+# %% [markdown]
+# These coincidences come from our construction (objects on the GEO shell along map 4's
+# rays). Move GEO2–GEO9 by up to ±15 km per axis (every map still sees its Table 3 objects)
+# and re-run the Fig. 5 sweep (100 draws each, same seeds):
+
+# %%
+def perturbed(rng):
+    while True:
+        Xp = scen.objects_km.copy()
+        Xp[1:] += rng.uniform(-15, 15, Xp[1:].shape)
+        if all(np.array_equal(c.sees(Xp, margin_px=10), scen.visible[k])
+               for k, c in enumerate(scen.cameras)):
+            return replace(scen, objects_km=Xp)
+
+
+def sweep_row(sc):
+    s_ = E.run_sweep(sc, err, E.THRESHOLDS, 100, runner=runner)
+    k10 = int(np.flatnonzero(s_.thresholds == L)[0])
+    return {"correct of true at L = 10": s_.accuracy[k10],
+            "correct of associated at L = 10": 1 - s_.false_rate[k10],
+            "best L (px)": s_.best_threshold}
+
+
+rng_p = np.random.default_rng(11)
+placements = pd.DataFrame({"ours": sweep_row(scen),
+                           **{f"perturbed {i + 1}": sweep_row(perturbed(rng_p))
+                              for i in range(3)}}).T
+pr_, rc_ = placements["correct of associated at L = 10"], placements["correct of true at L = 10"]
+assert pr_.max() < 0.85  # the prose below relies on it
+display(Markdown(f"Across the placements the recall at L = {L:g} px spans {rc_.min():.3f}–"
+                 f"{rc_.max():.3f}, the paper's reading {pr_.min():.3f}–{pr_.max():.3f}; the "
+                 f"best L spans {placements['best L (px)'].min():g}–"
+                 f"{placements['best L (px)'].max():g} px."))
+placements.round(3)
+
+# %% [markdown]
+# The recall moves by several points with the placement — that much of Figs. 4–5 and Table 3
+# hangs on our construction — but no placement brings the paper's reading near 90 % or the
+# best L into 8–12 px.
+#
+# ### Whole-pixel centroids and Table 4's noise-free level
+#
+# Table 3 prints whole pixels; rounding moves a point by ±0.5 px per axis. Noise-free draws
+# with rounded centroids:
+
+# %%
+mc_q = E.run_scenario_draws(scen, E.ErrorConfig(quantize=True), E.THRESHOLDS, L,
+                            N_BEYOND, runner=runner)
+paper_free = np.asarray(P["epipolar.table4"]["mean_distance_noise_free_px"])
+with warnings.catch_warnings():
+    warnings.simplefilter("ignore", RuntimeWarning)  # pair (d) has no correct pairs
+    noise_free_cmp = pd.DataFrame({
+        "pair": P["epipolar.table4"]["pairs"], "paper noise-free (px)": paper_free,
+        "ours, correct pairs (px)": np.nanmean(mc.stack("mean_d0_true"), 0),
+        "ours, correct pairs, rounded (px)": np.nanmean(mc_q.stack("mean_d0_true"), 0),
+        "ours, all associated, rounded (px)": np.nanmean(mc_q.stack("mean_d0"), 0)})
+rounded = noise_free_cmp["ours, correct pairs, rounded (px)"]
+assert np.nanmax(rounded) < 0.6 < np.nanmax(paper_free)  # the prose below relies on it
+noise_free_cmp.round(3)
+
+# %% [markdown]
+# Rounding explains a few tenths of a pixel (the paper's 4(f), 0.237 px), not 1–4 px.
 #
 # ### Fewer false associations: global assignment and a three-view check
 #
-# **Three-view check:** triangulate a pair, project the point into every other map; if it
-# falls inside that image and nothing was detected within 1.5 L, the pair is false. This is
-# how the paper itself recognises Fig. 4(e), turned into a rule. Over all draws at L = 10 px:
+# **Three-view check** (ours; no status depends on it): triangulate a pair, project the point
+# into every other map; if it lands inside that image with no detection within 1.5 L, the pair
+# is false. The paper spots Fig. 4(e) by inconsistent summary rows. Over all draws at
+# L = 10 px:
 
 # %%
 E.rules_table(mc)
 
 # %% [markdown]
 # The three-view check removes most false associations at almost no cost in true pairs (map
-# 2 has no useful third view: it overlaps only map 4). The global assignment also misses
-# fewer true pairs.
+# 2 overlaps only map 4: no third view). The global assignment misses fewer true pairs.
 #
 # ### What attitude accuracy a 3 km triangulation needs
 #
@@ -879,35 +1008,44 @@ E.rules_table(mc)
 
 # %%
 out_tri = {}
-for att in (1.0, 0.1, 0.03):
+for att, pos, jit in ((1.0, 0.2, 10.0), (0.1, 0.2, 10.0), (0.03, 0.2, 10.0), (0.03, 0.02, 10.0),
+                      (0.03, 0.2, 1.0)):
     t = np.stack(run_trials(E.triangulation_trial, N_BEYOND, seed=5, runner=runner,
-                            args=(scen, E.ErrorConfig(attitude_arcmin=att), L)))
-    out_tri[f"±{att:g}′"] = {"GEO1 median max|Δ| (km)": np.nanmedian(t[:, 0]),
+                            args=(scen, E.ErrorConfig(attitude_arcmin=att, position_km=pos,
+                                                      jitter_urad=jit), L)))
+    out_tri[f"±{att:g}′, {pos:g} km, {jit:g} µrad"] = {
+        "GEO1 median max|Δ| (km)": np.nanmedian(t[:, 0]),
                              "GEO5 median max|Δ| (km)": np.nanmedian(t[:, 1]),
                              "both within 3 km": np.mean(np.all(t <= 3, axis=1))}
 tri_tab = pd.DataFrame(out_tri).T
 g1 = tri_tab["GEO1 median max|Δ| (km)"].to_numpy()
+both3 = tri_tab["both within 3 km"].to_numpy()
+assert abs(g1[3] / g1[2] - 1) < 0.25 and g1[4] < 0.7 * g1[2]  # the prose below relies on it
 display(Markdown(f"GEO1's error shrinks {g1[0] / g1[1]:.1f}× from ±1′ to ±0.1′ (the attitude "
                  f"error shrinks 10×) but only {g1[1] / g1[2]:.1f}× more from ±0.1′ to ±0.03′ "
-                 "(3.3×)."))
+                 f"(3.3×). At ±0.03′ a ten times smaller position error leaves GEO1 at "
+                 f"{g1[3]:.1f} km; a ten times smaller jitter brings it to {g1[4]:.1f} km "
+                 f"(both within 3 km in {100 * both3[4]:.0f} % of the draws)."))
 tri_tab
 
 # %% [markdown]
-# Down to the sensor's 0.1′ the error follows the attitude error; below it, position noise
-# and jitter, stretched along the line of sight by the short baselines, set a floor of a few
-# km. The paper's 3 km suggests attitude errors at the sensor's arcsecond level, not 1′.
+# Down to the sensor's 0.1′ the error follows the attitude error; below it, the 10 µrad
+# centroid jitter, stretched along the line of sight by the short baselines, sets a floor of a
+# few km — not the position error. The paper's 3 km needs arcsecond attitude errors *and* a
+# jitter well below 10 µrad, not 1′.
 #
 # ## Key points
 #
 # - With known poses, $F = M_2^{-\top}R_{12}[t]_\times M_1^{-1}$; association needs no image
 #   features, only the distance of a dot from an epipolar line.
-# - The threshold $L$ trades missed against false associations; the best $L$ follows the
-#   spread of true-pair distances, which the attitude error sets.
+# - The threshold $L$ trades missed against false associations. The best $L$ follows the
+#   spread of true-pair distances only while false candidates are rare; with several per
+#   band (our scene) they pull it below the error-budget gate (gate study).
 # - Derive $L$ from the error budget ($\sigma_d\sqrt{\chi^2_1(p)}$) rather than guessing.
-# - False targets and objects seen by only one sensor of a pair make several candidates per
-#   band; a third view removes most resulting false associations.
-# - Short baselines turn small angular errors into large range errors: with 1′ attitude
-#   errors the triangulation misses the paper's 3 km by far (Table 5).
+# - False targets and objects seen by one sensor of a pair put several candidates in a band;
+#   a third view removes most resulting false associations.
+# - Short baselines turn small angular errors into large range errors: with 1′ the
+#   triangulation misses the paper's 3 km by far.
 # - A 3σ rejection rule cannot reject anything among ≤ 10 samples.
 #
 # ## Exercises
@@ -958,8 +1096,8 @@ if answer is not None:
 
 # %% [markdown]
 # **5 (computation, error budget).** Read the paper's 1′ as an rms attitude error (uniform
-# noise of bound $\sqrt3$′ has that rms). What **95 %** gate (px) does the error budget
-# give? Use `E.error_budget_gate`.
+# noise of bound $\sqrt3$′ has that rms) and the jitter as **100 µrad** rms. What **90 %**
+# gate (px) does the error budget give? Use `E.error_budget_gate`.
 
 # %%
 answer = None  # your answer here (px)
@@ -988,15 +1126,16 @@ if answer is not None:
 #
 # ## Closing note: review
 #
-# The expert review of issue 25 listed 6 groups of defects (15 items): the Table 3 / Table 5
-# contradiction (section *Tables 3 and 5 disagree*); Table 4 on one draw, its noise-free
-# level and the lone 1.387 (Table 4 section); three understated numbers (Table 3 section,
-# section 8); three figure defects (Fig. 4 panel (d) note, Fig. 6 paper values labelled per
-# L, gate-study titles and axis labels); four exercises (1, 3, 5 re-posed on settings the
-# notebook does not print, 4 moved to the reference sensor once section 8 printed its answer;
-# 2 rejects eotrack and OpenCV); Table 2 moved into `claims.toml`, Samuelson's inequality
-# cited. All were addressed in this revision; none were left. The independent second review
-# of this revision (`../shared/REVIEW.md`) has not yet been run.
+# First expert review (issue 25): 15 items in 6 groups, all addressed in the previous
+# revision. Independent second review (`../shared/REVIEW.md`): **21 findings** (1 high, 11
+# medium, 9 low). **Fixed 20**: Fig. 5 scored in the paper's reading too (errata row); the
+# 1,032 pairs per group reconciled; Table 4's history and level band; Fig. 8 and Table 3 over
+# the draws; placement dependence measured (*Beyond*); per-pair gate coverage and `p`
+# refused with a threshold; key point and Beyond sentence corrected (measured: the floor is
+# the jitter, not the position error); Table 3 labelled by identity; exercises 2, 3, 5;
+# Fig. 4 no longer scored on our three-view check; pass/fail for checks; a point at the
+# epipole refused; figure fixes; eq. (4) in full; step 5 errata row; small defects. **Left
+# 1, partly**: prose is trimmed to about 3,250 words, still above ~3,000.
 
 # %%
 from eotrack.notebook import lesson_footer

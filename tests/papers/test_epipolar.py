@@ -17,8 +17,9 @@ EXPECTED = {
     "epipolar.fig3": Status.REPRODUCED,
     "epipolar.fig4": Status.PARTIAL,
     "epipolar.table3": Status.NOT_REPRODUCED,
-    "epipolar.table4": Status.REPRODUCED,
-    # quick run (100 draws): the in-band correct rate's interval reaches below 85 %
+    # ordering significant for every pair, but our noisy levels are 0.3-0.7 of the paper's
+    "epipolar.table4": Status.PARTIAL,
+    # the paper's reading (correct of the associated pairs) is far below 85 %
     "epipolar.fig5": Status.NOT_REPRODUCED,
     "epipolar.fig6": Status.NOT_REPRODUCED,
     "epipolar.table5": Status.NOT_REPRODUCED,
@@ -275,10 +276,31 @@ def test_table4_is_paired_over_draws(rep):
 def test_fig5_has_bootstrap_intervals(rep):
     b = rep.data["fig5_bootstrap"]
     assert b["n_boot"] >= 1000
-    assert b["confidence"] == pytest.approx(1 - 0.05 / 2)  # Bonferroni over two readings
+    assert b["confidence"] == pytest.approx(1 - 0.05 / 3)  # Bonferroni over three intervals
     assert b["best_L_ci"][0] <= b["best_L"] <= b["best_L_ci"][1]
     assert b["acc_ci"][0] <= b["acc"] <= b["acc_ci"][1]
+    # both readings of "correct": of the true pairs and (the paper's) of the associated pairs
+    assert b["prec_ci"][0] <= b["prec"] <= b["prec_ci"][1]
+    assert b["prec"] < b["acc"]  # false associations: precision below recall here
     assert len(rep.data["trials"]) >= 20
+
+
+def test_fig8_and_table3_are_decided_over_the_draws(rep):
+    """Statistics rules: the share over >= 20 draws with a Wilson interval, not one draw."""
+    n = len(rep.data["trials"])
+    assert n >= 20
+    by = {c.claim: c for c in rep.claims}
+    assert "95 %" in by["epipolar.fig8"].ours and f"{n} draws" in by["epipolar.fig8"].ours
+    assert "95 %" in by["epipolar.table3"].ours
+    # the evaluators look at intervals only: the displayed draw cannot flip them
+    assert E.status_fig8({"share_ci": (0.55, 0.7)}) is Status.REPRODUCED
+    assert E.status_table3({"all_nine_ci": (0.0, 0.1), "mean_recovered_ci": (5.0, 6.0),
+                            "n_objects": 9, "displayed_recovered": 9}) is Status.NOT_REPRODUCED
+
+
+def test_table4_note_states_the_post_results_history(rep):
+    note = next(c.note for c in rep.claims if c.claim == "epipolar.table4")
+    assert "after results" in note and "earlier one-draw criterion" in note
 
 
 def test_root_seed_derives_every_generator():

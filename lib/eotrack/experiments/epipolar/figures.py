@@ -73,17 +73,28 @@ def plot_epipolar_geometry(scenario: Scenario, pair=(0, 3), target: int = 4, *, 
     ax.plot_wireframe(EARTH_RADIUS_KM * np.cos(u) * np.sin(v),
                       EARTH_RADIUS_KM * np.sin(u) * np.sin(v), EARTH_RADIUS_KM * np.cos(v),
                       color="0.7", lw=0.4)
+    # only the pair's two sensors are labelled, one to each side (the four sensors are
+    # within a few thousand km of each other: their labels would overlap); the others are
+    # named in the legend
+    others = [k for k in range(len(scenario.cameras)) if k not in (a, b)]
     for k, cam in enumerate(scenario.cameras):
         hi = k in (a, b)
-        ax.scatter(*cam.c, color="tab:blue" if hi else "0.5", s=30 if hi else 12)
-        ax.text(*cam.c, f" O{k + 1}", fontsize=9, color="tab:blue" if hi else "0.4")
+        ax.scatter(*cam.c, color="tab:blue" if hi else "0.5", s=30 if hi else 12,
+                   label=("other sensors (" + ", ".join(f"O{m + 1}" for m in others) + ")")
+                   if k == others[0] else None)
+        if hi:
+            left = k == a
+            ax.text(*cam.c, f"O{k + 1}  " if left else f"  O{k + 1}", fontsize=9,
+                    color="tab:blue", ha="right" if left else "left", va="bottom")
         if hi:
             ax.quiver(*cam.c, *(cam.R[2] * 0.6 * np.linalg.norm(X - cam.c)), color="tab:blue",
                       lw=1, arrow_length_ratio=0.05)
     ax.scatter(*scenario.objects_km.T, color="k", s=6)
     ax.scatter(*X, color="tab:red", s=40)
     ax.text(*X, f"  {scenario.names[j]}", color="tab:red", fontsize=9)
-    ax.plot(*np.stack([ca.c, cb.c]).T, color="tab:orange", lw=2, label="baseline O₁O₂")
+    base_km = float(np.linalg.norm(cb.c - ca.c))
+    ax.plot(*np.stack([ca.c, cb.c]).T, color="tab:orange", lw=3,
+            label=f"baseline O{a + 1}O{b + 1} ({base_km:,.0f} km: short at this scale)")
     for c in (ca.c, cb.c):
         ax.plot(*np.stack([c, X]).T, color="tab:red", lw=0.8, ls="--")
     from mpl_toolkits.mplot3d.art3d import Poly3DCollection
@@ -391,13 +402,11 @@ def plot_fig4(scenario: Scenario, obs: Observation, matches, *, fig=None):
         ax.set_xticks([])
         ax.set_yticks([])
         ax.grid(False)
-        ax.set_title(f"Fig. {lab[:4]} — map {a + 1} | map {b + 1}", fontsize=9)
-        if not np.any(scenario.visible[a] & scenario.visible[b]):
-            note = (f"maps {a + 1} and {b + 1} share no object:\n"
-                    + ("no association (as in the paper)" if not len(pairs) else
-                       f"all {len(pairs)} line(s) here are false"))
-            ax.text(w + 10, h / 2, note, ha="center", va="center", fontsize=9,
-                    bbox={"fc": "white", "ec": "0.5", "alpha": 0.9})
+        title = f"Fig. {lab[:4]} — map {a + 1} | map {b + 1}"
+        if not np.any(scenario.visible[a] & scenario.visible[b]):  # note in the title,
+            title += ("\nno shared object: no association" if not len(pairs) else  # off the dots
+                      f"\nno shared object: all {len(pairs)} line(s) false")
+        ax.set_title(title, fontsize=9)
     from matplotlib.lines import Line2D
 
     handles = [Line2D([], [], color="tab:green", lw=1, label="correct association"),
@@ -463,20 +472,34 @@ def plot_fig6(running: dict, analytic: dict, paper: dict | None = None, *, ax=No
     return ax
 
 
-def plot_fig8(scenario: Scenario, estimates: dict[str, dict], *, ax=None):
-    """Fig. 8: pair estimates, combined estimate and truth of GEO1 and GEO5 (J2000, km)."""
+def plot_fig8(scenario: Scenario, estimates: dict[str, dict], *, ax=None,
+              paper: dict | None = None):
+    """Fig. 8: pair estimates, combined estimate and truth of GEO1 and GEO5 (J2000, km).
+
+    With one pair estimate the combined estimate is that estimate (one marker, said in the
+    label). ``paper`` (the ``epipolar.table5`` paper values) adds the paper's mean and truth
+    (diamonds) beside ours.
+    """
     if ax is None:
         fig = plt.figure(figsize=(6.4, 5.0))
         ax = fig.add_subplot(projection="3d")
     ref = np.asarray(next(iter(estimates.values()))["truth"], float)  # the first truth
     for i, (name, e) in enumerate(estimates.items()):
         col = f"C{i}"
-        if e["pairs"]:
+        n_pairs = len(e["pairs"])
+        if n_pairs > 1:
             P = np.stack(list(e["pairs"].values())) - ref
             ax.scatter(*P.T, color=col, marker="^", s=40, alpha=0.7,
-                       label=f"{name} pair estimates ({len(P)})")
+                       label=f"{name} pair estimates ({n_pairs})")
         ax.scatter(*(e["combined"] - ref), color=col, marker="x", s=70,
-                   label=f"{name} combined")
+                   label=f"{name} combined" + (" (= its one pair estimate)" if n_pairs == 1
+                                               else ""))
+        if paper is not None:
+            rows = dict(zip(paper["pairs"], paper[f"{name.lower()}_km"]))
+            ax.scatter(*(np.asarray(rows["mean"]) - ref), color=col, marker="D", s=45,
+                       label=f"{name} paper mean (Table 5)")
+            ax.scatter(*(np.asarray(rows["truth"]) - ref), color=col, marker="D", s=45,
+                       facecolors="none", label=f"{name} paper truth (Table 5)")
         ax.scatter(*(e["truth"] - ref), color=col, marker="o", s=50, facecolors="none",
                    label=f"{name} truth")
         ax.plot(*(np.stack([e["truth"], e["combined"]]) - ref).T, color=col, lw=1, ls=":")
