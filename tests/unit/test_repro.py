@@ -101,7 +101,7 @@ def test_scorecard_and_report(repro_root, tmp_path):
     assert "**Verdict:** central claim demo.a: **reproduced**." in text
     assert "## Criterion history" in text and "after results were seen" in text
     assert "Stability: not run" in text
-    assert "| demo.b |" in text and "![fig1_demo](figures/fig1_demo.png)" in text
+    assert "| demo.b |" in text and "![Figure](figures/fig1_demo.png)" in text  # untitled
     assert (out / "figures" / "fig1_demo.png").stat().st_size > 1000
     data = json.loads((out / "scorecard.json").read_text())
     assert data["claims"][1]["status"] == "partial"

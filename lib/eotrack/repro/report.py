@@ -10,6 +10,8 @@ from typing import Any
 
 import pandas as pd
 
+from eotrack.plotting import describe_figure
+
 from .claims import Claim, load_claims
 from .scorecard import ClaimResult, scorecard, status_summary
 from .stability import Stability, read_stability
@@ -180,7 +182,8 @@ def write_report(rep: Reproduction, out_dir: str | os.PathLike[str], *, dpi: int
         lines += ["## Figures", ""]
         for stem, fig in rep.figures.items():
             fig.savefig(fig_dir / f"{stem}.png", dpi=dpi, bbox_inches="tight")
-            lines += [f"![{stem}](figures/{stem}.png)", ""]
+            alt = describe_figure(fig).replace("[", "(").replace("]", ")")
+            lines += [f"![{alt}](figures/{stem}.png)", "", f"*{stem}*", ""]
     report = out / "REPORT.md"
     report.write_text("\n".join(lines))
     rows = []
