@@ -908,4 +908,4 @@ def ransac_pose_opencv(points: Any, pixels: Any, K: Any, *, threshold_px: float 
                                           t.reshape(3, 1).copy())
             R, t = cv2.Rodrigues(rv)[0], tv.ravel().astype(float)
     e = _batch_errors(X, u, R[None], t[None], K)[0]
-    return RansacResult(True, R, t, inliers, -1, "cv2.solvePnPRansac", e)
+    return RansacResult(True, R, t, inliers, -1, "cv2.solvePnPRansac", e, float(threshold_px))
