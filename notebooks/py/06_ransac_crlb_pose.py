@@ -14,13 +14,11 @@
 # 導航方法研究). Aerospace Shanghai **33**(6):136–141, 2016.
 # [DOI 10.19328/j.cnki.1006-1630.2016.06.020](https://doi.org/10.19328/j.cnki.1006-1630.2016.06.020)
 #
-# **What the paper does.** A chaser spacecraft estimates the position and attitude of a target
-# that carries no markers, from one camera and natural feature points whose 3-D positions on
-# the target are known. Matching produces gross errors, and many features cost computation.
-# The paper (i) removes gross errors with RANSAC (6 random points, a linear pose, an inlier
-# test), then (ii) scores point sets by the Cramér–Rao lower bound (CRLB) of the pose and keeps
-# only the inliers that lower it, claiming about a third fewer points *and* a more accurate
-# pose (Figs. 4–6).
+# **What the paper does.** A chaser spacecraft estimates the pose of an unmarked target from
+# one camera and feature points of known 3-D position. The paper (i) removes matching gross
+# errors with RANSAC (6 random points, a linear pose, an inlier test), then (ii) scores point
+# sets by the Cramér–Rao lower bound (CRLB) of the pose and keeps only the inliers that lower
+# it, claiming about a third fewer points *and* a more accurate pose (Figs. 4–6).
 #
 # **The lesson in one line.** Fisher information only adds up, so the exact CRLB can only fall
 # when a point is added: read literally, the selection keeps every inlier. Something else —
@@ -384,12 +382,10 @@ print("history rows:", len(history), "— changed after results were seen:",
 # %% [markdown]
 # ## Reproduction
 #
-# The paper's Figs. 4–6 were images and are lost; only the text's statements survive, so there
-# are no curve values to compare — only directions ("more accurate") and one number (Fig. 6,
+# Figs. 4–6 are lost; the text gives only directions ("more accurate") and one number (Fig. 6,
 # "about two thirds"). The same 300 (Figs. 4–5) and 80 (Fig. 6) seeded runs as `make repro`:
-# each run simulates an image, runs RANSAC, then every reading, each followed by an unweighted
-# LM pose on its selection; `ml` is the pose weighted by the true σ_i (a reference, not a
-# selection).
+# per run an image, RANSAC, every reading with an unweighted LM pose on its selection; `ml` is
+# the pose weighted by the true σ_i (a reference, not a selection).
 
 # %%
 t0 = time.perf_counter()
@@ -590,10 +586,8 @@ assert kf["ci"][0] <= kf["mean"] <= kf["ci"][1]
 #
 # ## Explore
 #
-# How many points a reading drops and what that does to the attitude error, at the printed
-# noise (1 mm) and the pixel reading (0.01 mm, no flips). Each setting shows a few dozen
-# cached runs (`E.EXPLORE_RUNS`) so a change redraws quickly. The tolerance slider applies
-# only to the *tolerance* reading.
+# Points dropped and attitude error per reading, at the printed noise (1 mm) and the pixel
+# reading (0.01 mm, no flips); a few dozen cached runs per setting (`E.EXPLORE_RUNS`).
 
 # %%
 n_cached = E.warm_explore_cache()   # every setting the controls can reach: a change only draws
@@ -654,16 +648,14 @@ ml_lin = eff[(eff["noise unit (mm)"] == 0.01) & (eff["estimator"] == "ML (from t
 assert 0.75 < ml_lin["att RMS / CRLB"] < 1.25 and 0.75 < ml_lin["pos RMS / CRLB"] < 1.25
 
 # %% [markdown]
-# In the small-noise regime the ML pose attains the CRLB and unweighted least squares sits at
-# its own, larger bound — the gap a selection rule could try to close, and weighting closes
-# completely. At the printed noise, started from a linear solution, ML lands in the mirrored
-# planar solution often enough that the CRLB says little about the actual error.
+# At small noise ML attains the CRLB and unweighted LS its own, larger bound — the gap
+# weighting closes. At the printed noise ML often lands in the mirrored planar solution, and
+# the CRLB says little about the actual error.
 #
 # ### Budgeted selection: best k points vs random k
 #
-# If computation limits the number of points to k, which k? Greedy optimal design on the
-# Fisher information (D-optimal: maximise $\log\det J(S)$; A-optimal: minimise the paper's
-# weighted CRLB sum), pixel reading of the noise, weighted LM from the all-point pose.
+# If only k points can be used, which k? Greedy design on the Fisher information (D-optimal:
+# max $\log\det J(S)$; A-optimal: min the weighted CRLB sum), pixel reading, weighted LM.
 
 # %%
 bud = E.budget_experiment(n_runs=6 if QUICK else st.n_runs_budget, scenario=sc, runner=runner)
@@ -805,10 +797,8 @@ assert (_ours_rows["found (< 5°)"] >= 0.9 * _ours_rows["of"]).all()
 # * A selection rule can only drop points through something the CRLB does not contain: an
 #   estimated noise level, an unweighted solver, or a budget/stopping rule.
 # * If per-point noise is known, weight the points (ML) rather than dropping them.
-# * A small, distant plane has two nearly equally good poses; check solvers for the flip, not
-#   only their speed.
-# * Fix the reading and the test before the run; correct exploratory comparisons for their
-#   number (Holm).
+# * A small, distant plane has two nearly equally good poses: check solvers for the flip.
+# * Fix the reading and the test before the run; Holm-correct exploratory comparisons.
 #
 # ## Exercises
 #
