@@ -23,8 +23,8 @@
 # ## Learning objectives
 #
 # After this notebook you can
-# - build the fundamental matrix of two cameras from their poses (eqs. 2–5) and check it;
-# - compute point-to-epipolar-line distances (eq. 8) and associate points one-to-one;
+# - build and check the fundamental matrix of two posed cameras (eqs. 2–5);
+# - compute point-to-line distances (eq. 8) and associate points one-to-one;
 # - explain how $L$ trades missed against false associations, and derive $L$ from an error
 #   budget;
 # - triangulate from two lines of sight and say why short baselines hurt;
@@ -225,10 +225,9 @@ print("p2ᵀ F p1 ≈ 0 for all shared objects; F = OpenCV's [T]ₓR form up to 
 # %% [markdown]
 # ### 5. Distance to the epipolar line: eq. (8)
 #
-# With $Fp_1 = (a,b,c)$ the distance of $p_2$ from the epipolar line is
-# $d = |p_2^\top F p_1|/\sqrt{a^2+b^2}$, and $p_2$ is a candidate if $d < L$ (the paper prints
-# "$\ll L$"). `epipolar_distances(F, pts1, pts2)` returns the whole $(n_1, n_2)$ matrix; it
-# matches `cv2.computeCorrespondEpilines` [3] and does not depend on the scale of $F$.
+# With $Fp_1 = (a,b,c)$, $d = |p_2^\top F p_1|/\sqrt{a^2+b^2}$; $p_2$ is a candidate if
+# $d < L$ (printed "$\ll L$"). `epipolar_distances(F, pts1, pts2)` returns the $(n_1, n_2)$
+# matrix, matches `cv2.computeCorrespondEpilines` [3] and ignores the scale of $F$.
 
 # %%
 rng = np.random.default_rng(0)
@@ -253,9 +252,9 @@ print("paper rule:", associate(dist, 10.0).tolist(), "  global:",
       associate(dist, 10.0, rule="hungarian").tolist())
 
 # %% [markdown]
-# The summary (Table 3) takes the maps in order: a new element joins a row if it is
-# associated with *every* earlier element of that row, otherwise it starts a new row. A check
-# by hand: target A in all three maps, target B in maps 1 and 3, a lone point in map 3.
+# The summary (Table 3) takes the maps in order: an element joins a row if associated with
+# *every* earlier element of it, else starts a row. By hand: A in all three maps, B in maps 1
+# and 3, a lone point in map 3.
 
 # %%
 # NBVAL_CHECK_OUTPUT
@@ -266,9 +265,8 @@ assert rows.tolist() == [[0, 0, 0], [1, -1, 1], [-1, -1, 2]]
 # %% [markdown]
 # ### 7. Triangulation and the 3σ rule (§3, paper Fig. 7)
 #
-# Two lines of sight rarely meet; the estimate is the midpoint of their common perpendicular
-# (the closest-approach segment). $N$ lines give the least-squares point. Both are exact
-# without noise:
+# Two lines of sight rarely meet; the estimate is the midpoint of their closest-approach
+# segment; $N$ lines give the least-squares point. Both exact without noise:
 
 # %%
 Xt = X[4]
@@ -317,9 +315,8 @@ display(Markdown(f"In pixels: 1′ = {K[0, 0] * E.ARCMIN:.2f} px; 0.2 km seen fr
 # %% [markdown]
 # ### 9. One trial by hand
 #
-# One instant (seed 2019, the draw shown in Figs. 3–4): draw the errors, then for each of the
-# six map pairs build $F$ from the *measured* poses, compute the distances, associate at
-# $L = 10$ px and merge the pairs into the summary.
+# One instant (seed 2019, shown in Figs. 3–4): draw the errors; per map pair, $F$ from the
+# *measured* poses, distances, association at $L = 10$ px; then the summary.
 
 # %%
 L = float(P["epipolar.fig4"]["threshold_px"])
@@ -380,8 +377,7 @@ fig = E.plot_fig3(scen, draw.obs, images)
 # %% [markdown]
 # ### Fig. 4 — pairwise associations at L = 10 px
 #
-# Green: correct associations; red: false ones. As in the paper, maps 2 and 3 share no object
-# (panel d), so any line there is false.
+# Green: correct; red: false. Maps 2 and 3 share no object (panel d), as in the paper.
 
 # %%
 fig = E.plot_fig4(scen, draw.obs, draw.matches)
@@ -402,6 +398,7 @@ pd.Series(E.closest_other_object_px(scen),
 true_d_all = np.concatenate([o["true_d"] for o in mc.trials])
 n_missed, n_far = mc.total("missed_nominal"), int(np.sum(true_d_all >= L))
 share_all = float(np.mean(mc.stack("all_true_associated")))
+assert n_far == 0  # "every lost true pair was taken by a nearer wrong candidate" (Beyond)
 display(Markdown(
     f"Over {mc.n_draws} draws at L = {L:g} px: {n_missed} of {len(true_d_all)} true pairs "
     f"lost — {n_far} beyond L, {n_missed - n_far} taken by a nearer wrong candidate. Every "
@@ -540,8 +537,8 @@ with warnings.catch_warnings():
     assert np.nanmax(np.nanmean(mc.stack("mean_d0_true"), 0)) < 0.05  # prose above
 
 # %% [markdown]
-# **Row 4(a).** The extracted Table 4 row (a) holds a single number, 1.387, with nothing to say
-# which column it belongs to. By size it fits the paper's noise-free column, not its noisy one:
+# **Row 4(a)** holds a single number, 1.387, of unknown column. By size it fits the
+# noise-free column:
 
 # %%
 lone = p4["row_a_unplaced_px"]
@@ -586,15 +583,13 @@ display(Markdown(
 f5
 
 # %% [markdown]
-# Small thresholds miss true pairs and large ones admit false pairs, as the paper says. In
-# the paper's reading our best rate in 8–12 px is far below 90 % (interval below 85 %); only
-# the true-pair reading comes near. The best threshold's interval excludes 8–12 px. Not
-# reproduced in either reading.
+# Small thresholds miss true pairs, large ones admit false pairs, as the paper says. In its
+# reading our best in-band rate is far below 90 % (interval below 85 %); only the true-pair
+# reading comes near. The best threshold's interval excludes 8–12 px: not reproduced.
 #
-# The paper's "group" is not our four-map draw: its associated pairs per group match ours
-# per *map pair* (above). Pooled rates do not depend on the grouping, and the candidates per
-# epipolar band, which set the false share, are those of our map pairs — but the paper's
-# number of false targets per map is unstated.
+# The paper's "group" matches our *map pair*, not our four-map draw (pairs per group,
+# above). Pooled rates do not depend on the grouping; the paper's false targets per map are
+# unstated.
 #
 # ### Fig. 6 — the Monte Carlo bound on false association
 #
@@ -863,10 +858,9 @@ assert np.array_equal(associate(d_ex, sigma_px=sig_rms), associate(d_ex, chi2_ga
 assert np.isclose(chi2_gate(sig_rms), gate99)
 
 # %% [markdown]
-# One pooled σ_d gives one gate for all six map pairs, but σ_d differs per pair, so the
-# promise "a true pair falls outside with probability 1 − p" holds only on average. The
-# Gaussian miss probability of each pair's true pairs at the pooled gate, and each pair's own
-# gate (`associate(d, sigma_px=σ_pair)`):
+# A pooled σ_d gives one gate for all map pairs, but σ_d differs per pair: "outside with
+# probability 1 − p" holds only on average. Miss probability per pair at the pooled gate, and
+# each pair's own gate (`associate(d, sigma_px=σ_pair)`):
 
 # %%
 from scipy.stats import norm
@@ -884,8 +878,8 @@ display(Markdown(f"Pooled gate {gate99:.2f} px: mean miss probability over the t
 per_pair.round(4)
 
 # %% [markdown]
-# The gate against the best threshold of the sweep, for several attitude errors, read as a
-# uniform bound (left) and as an rms value (right):
+# Gate against the sweep's best threshold, attitude read as a uniform bound (left) or rms
+# (right):
 
 # %%
 gs_bound = E.gate_study(scen, (0.5, 1.0, 2.0), n_draws=N_BEYOND, runner=runner)
@@ -896,10 +890,9 @@ E.plot_gate_study(gs_rms, ax=axs[1])
 pd.concat({"attitude read as a uniform bound": gs_bound, "attitude read as rms": gs_rms})
 
 # %% [markdown]
-# For small attitude errors the gate and the empirical optimum roughly coincide; as errors
-# grow, false associations pull the optimum below the gate. Read as rms, the paper's 1′ gives
-# a gate inside 8–12 px — a plausible origin of its threshold (*exploratory*, chosen after
-# seeing Fig. 5; no status depends on it).
+# For small attitude errors gate and optimum roughly coincide; as errors grow, false
+# associations pull the optimum below the gate. Read as rms, 1′ gives a gate inside 8–12 px,
+# a plausible origin of the paper's threshold (*exploratory*; no status depends on it).
 #
 # ### Where the lost true pairs come from
 #
@@ -1004,7 +997,7 @@ E.rules_table(mc)
 #
 # ### What attitude accuracy a 3 km triangulation needs
 #
-# The sensor's stated accuracy is 6″ (0.1′), ten times better than the injected 1′:
+# The sensor's stated accuracy is 6″ (0.1′), ten times the injected 1′:
 
 # %%
 out_tri = {}
@@ -1036,16 +1029,13 @@ tri_tab
 #
 # ## Key points
 #
-# - With known poses, $F = M_2^{-\top}R_{12}[t]_\times M_1^{-1}$; association needs no image
-#   features, only the distance of a dot from an epipolar line.
-# - The threshold $L$ trades missed against false associations. The best $L$ follows the
-#   spread of true-pair distances only while false candidates are rare; with several per
-#   band (our scene) they pull it below the error-budget gate (gate study).
-# - Derive $L$ from the error budget ($\sigma_d\sqrt{\chi^2_1(p)}$) rather than guessing.
-# - False targets and objects seen by one sensor of a pair put several candidates in a band;
-#   a third view removes most resulting false associations.
-# - Short baselines turn small angular errors into large range errors: with 1′ the
-#   triangulation misses the paper's 3 km by far.
+# - With known poses, $F = M_2^{-\top}R_{12}[t]_\times M_1^{-1}$; association needs only the
+#   distance of a dot from an epipolar line.
+# - $L$ trades missed against false associations. The best $L$ follows the true-pair spread
+#   only while false candidates are rare; with several per band they pull it below the
+#   error-budget gate $\sigma_d\sqrt{\chi^2_1(p)}$.
+# - Foreign points in a band cause false associations; a third view removes most.
+# - Short baselines turn small angular errors into large range errors.
 # - A 3σ rejection rule cannot reject anything among ≤ 10 samples.
 #
 # ## Exercises
@@ -1063,9 +1053,9 @@ if answer is not None:
     check("epipolar.1", answer)
 
 # %% [markdown]
-# **2 (computation).** Write `dist(F, p1, p2)` returning the $(n_1, n_2)$ matrix of eq. (8)
-# with numpy only (no `eotrack`, no OpenCV — the checker rejects a function that calls
-# them). It is run on hidden inputs, including scaled and sign-flipped $F$.
+# **2 (computation).** Write `dist(F, p1, p2)` returning eq. (8)'s $(n_1, n_2)$ matrix with
+# numpy only (the checker rejects eotrack and OpenCV). It runs on hidden inputs, including
+# scaled and sign-flipped $F$.
 
 # %%
 dist_fn = None  # your function here
@@ -1085,9 +1075,8 @@ if answer is not None:
     check("epipolar.3", answer)
 
 # %% [markdown]
-# **4 (critique).** Section 8 converts the printed "10 mrad" jitter into pixels of the
-# experiment's sensor. Would the reading be saved on the wide-field reference sensor of
-# Table 2 (ST-APS2-2, 20°×20°, 1024×1024 px)? How many of *its* pixels is 10 mrad?
+# **4 (critique).** Would the "10 mrad" reading be saved on Table 2's wide-field reference
+# sensor (ST-APS2-2, 20°×20°, 1024×1024 px)? How many of *its* pixels is 10 mrad?
 
 # %%
 answer = None  # your answer here (px)
@@ -1126,16 +1115,15 @@ if answer is not None:
 #
 # ## Closing note: review
 #
-# First expert review (issue 25): 15 items in 6 groups, all addressed in the previous
-# revision. Independent second review (`../shared/REVIEW.md`): **21 findings** (1 high, 11
-# medium, 9 low). **Fixed 20**: Fig. 5 scored in the paper's reading too (errata row); the
-# 1,032 pairs per group reconciled; Table 4's history and level band; Fig. 8 and Table 3 over
-# the draws; placement dependence measured (*Beyond*); per-pair gate coverage and `p`
-# refused with a threshold; key point and Beyond sentence corrected (measured: the floor is
-# the jitter, not the position error); Table 3 labelled by identity; exercises 2, 3, 5;
-# Fig. 4 no longer scored on our three-view check; pass/fail for checks; a point at the
-# epipole refused; figure fixes; eq. (4) in full; step 5 errata row; small defects. **Left
-# 1, partly**: prose is trimmed to about 3,250 words, still above ~3,000.
+# First expert review (issue 25): 15 items, all addressed in the previous revision. Second,
+# independent review (`../shared/REVIEW.md`): **21 findings** (1 high, 11 medium, 9 low),
+# **21 fixed**: Fig. 5 scored in the paper's reading too (errata row); 1,032 pairs per group
+# reconciled; Table 4's history and level band; Fig. 8 and Table 3 over the draws; placement
+# dependence measured; per-pair gate coverage, `p` refused with a threshold; key point and
+# the 3 km sentence corrected (measured: the jitter, not the position error, sets the
+# floor); Table 3 labelled by identity; exercises 2, 3, 5; Fig. 4 not scored on our
+# three-view check; pass/fail for checks; the epipole refused; figures; eq. (4) in full;
+# step 5 errata row; prose trimmed to about 3,000 words; small defects. **Left: none.**
 
 # %%
 from eotrack.notebook import lesson_footer
