@@ -353,16 +353,16 @@ def _bar_styles(names: list[str]) -> list:
 
 
 def _case_tick(label: str) -> str:
-    """Tick label of a case: its NORAD id, and "drifting" on a second line where it drifts."""
+    """Tick label of a case: its NORAD id, starred where the object drifts."""
     words = str(label).replace("NORAD ", "").split()
-    return words[0] + ("\n(drifting)" if "drifting" in str(label) else "")
+    return words[0] + ("*" if "drifting" in str(label) else "")
 
 
 def plot_generalisation(table: pd.DataFrame, *, ax: plt.Axes | None = None,
                         title: str = "Generalisation") -> plt.Axes:
     """Worst 72-min error per method and scenario (log scale); ticks: the case's NORAD id.
 
-    Drifting cases are marked on their tick. With an ``"orbit"`` column, each drifting case
+    Drifting cases are starred on their tick. With an ``"orbit"`` column, each drifting case
     also gets the orbit criterion's mark: 1/5 of the best sinusoid predictor's worst error
     (the orbit bar must reach below it).
     """
@@ -386,6 +386,7 @@ def plot_generalisation(table: pd.DataFrame, *, ax: plt.Axes | None = None,
                           colors="k", linestyles="-", lw=1.6,
                           label="criterion: 1/5 of the best sinusoid" if first else None)
                 first = False
-    label_axes(ax, x="object (NORAD id)", y="worst |error| in 72 min", yunit="″", title=title)
-    legend_outside(ax, where="right")
+    label_axes(ax, x="object (NORAD id; * drifting)", y="worst |error| in 72 min", yunit="″",
+               title=title)
+    legend_outside(ax, where="below", ncol=3)  # below: the figure keeps the book's width
     return ax
