@@ -306,7 +306,7 @@ def _cv_ratio_targets(fam, cv_thr=8.0):
 def test_defaults_hold_at_larger_noise():
     """σ 2–4 px (the review's case; the old absolute 4 px threshold gave 1.7× OpenCV's error)."""
     rng = np.random.default_rng(41)
-    fam = [random_pnp_scene(rng, sigma_px=(2.0, 4.0)) for _ in range(30)]
+    fam = [random_pnp_scene(rng, sigma_px=(2.0, 4.0)) for _ in range(24)]
     ours, ref = _cv_ratio_targets(fam)
     assert np.mean(ours[:, 0] < 5.0) >= 0.95
     assert np.median(ours[:, 0]) <= np.median(ref[:, 0])
@@ -335,7 +335,7 @@ def test_defaults_are_unit_free():
 def test_paper_mm_scene_rejects_gross_errors_with_defaults():
     from eotrack.experiments import ransac_crlb_pose as E
     sc = E.Scenario()
-    for k in range(3):
+    for k in range(2):
         s = E.make_scene(np.random.default_rng(k), sc)
         r = ransac_pose(s.points, s.pixels, sc.K, np.random.default_rng(0))
         assert r.success and np.sum(r.inliers & s.gross) <= 0.3 * s.gross.sum()
