@@ -33,11 +33,24 @@ def _right_2():
                                  conflicts=False)
 
 
-def _depleted_2():
-    # the conflict and depletion corrections the exercise does not ask for (the old answer)
+def _corrected_2(depletion=True, conflicts=True):
+    # the expected chance tracks (depletion and/or conflicts), which the exercise does not ask for
     cfg, sc = _scene2()
     return TH.chi2_chance_tracks(sc, v_min=cfg.v_gate_px_s[0], v_max=cfg.v_gate_px_s[1],
-                                 sigma_px=cfg.sigma_px, alpha=cfg.alpha)
+                                 sigma_px=cfg.sigma_px, alpha=cfg.alpha, depletion=depletion,
+                                 conflicts=conflicts)
+
+
+def _depleted_2():
+    return _corrected_2()
+
+
+def _depletion_only_2():
+    return _corrected_2(conflicts=False)
+
+
+def _conflicts_only_2():
+    return _corrected_2(depletion=False)
 
 
 def _consecutive_only_2():
@@ -59,7 +72,7 @@ RIGHT = {
     "track_init_hough.2": _right_2,
     "track_init_hough.3": _right_3,
     "track_init_hough.4": lambda: 1.0,
-    "track_init_hough.5": lambda: "b",
+    "track_init_hough.5": lambda: (400 * np.arccos(0.75) - 15 * np.sqrt(175)) / (400 * np.pi),
 }
 
 WRONG = {
@@ -67,11 +80,12 @@ WRONG = {
     "track_init_hough.2": lambda: 2 * _right_2(),
     "track_init_hough.3": lambda: _right_3() + 3.0,
     "track_init_hough.4": lambda: 2.0,  # track 2's count, not track 5's
-    "track_init_hough.5": lambda: "a",
+    "track_init_hough.5": lambda: 0.0,  # the 10 px gate's answer (the constraint cannot act)
 }
 
 
-@pytest.mark.parametrize("wrong", [_depleted_2, _consecutive_only_2])
+@pytest.mark.parametrize("wrong", [_depleted_2, _depletion_only_2, _conflicts_only_2,
+                                   _consecutive_only_2])
 def test_exercise2_rejects_the_other_recipes(wrong):
     assert abs(wrong() / _right_2() - 1) > 0.05
     assert not check("track_init_hough.2", wrong())
@@ -99,7 +113,7 @@ def test_wrong_answer_fails(ex):
     ("track_init_hough.2", "many", TypeError),
     ("track_init_hough.3", [1.0, 2.0], TypeError),
     ("track_init_hough.4", "a", TypeError),
-    ("track_init_hough.5", "z", ValueError),
+    ("track_init_hough.5", "b", TypeError),
 ])
 def test_bad_answer_raises(ex, bad, exc):
     with pytest.raises(exc):
@@ -109,3 +123,13 @@ def test_bad_answer_raises(ex, bad, exc):
 @pytest.mark.parametrize("wrong", [0.0, 2.0, 3.0])
 def test_exercise4_rejects_other_counts(wrong):
     assert not check("track_init_hough.4", wrong)
+
+
+@pytest.mark.parametrize("wrong", [
+    0.0,                                   # the 10 px setting of §4.7
+    0.5,                                   # half the gate (the perpendicular through the centre)
+    1 - RIGHT["track_init_hough.5"](),     # the complement (candidates kept)
+    15 / 20 / 2,                           # a linear guess d / (2r)
+])
+def test_exercise5_rejects_wrong_fractions(wrong):
+    assert not check("track_init_hough.5", wrong)

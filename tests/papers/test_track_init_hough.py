@@ -54,7 +54,7 @@ def test_variant_results_are_reported_beside_the_paper_status(rep):
 def test_statistics_rules_of_the_full_run():
     """Orderings on >= 20 paired scenes per point, >= 100 planted and clutter-only scenes."""
     n = exp.trial_counts(quick=False)
-    assert n["comparison"] >= 20 and n["planted"] >= 100 and n["chance"] >= 100
+    assert n["comparison"] >= 20 and n["planted"] >= 100 and min(n["chance"]) >= 100
     assert n["redraws"] >= 100
 
 

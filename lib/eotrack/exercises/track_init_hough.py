@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from eotrack.exercises import Choice, FunctionAnswer, NumericAnswer, register
+from eotrack.exercises import FunctionAnswer, NumericAnswer, register
 
 __all__: list[str] = []
 
@@ -71,6 +71,14 @@ def _ex4_expected() -> float:
     return float(sum(a != b for a, b in zip(*cells)))
 
 
+def _ex5_expected() -> float:
+    """Circular segment of the r = 20 px gate behind the last point (d = 15 px) over πr²."""
+    import math
+
+    r, d = 20.0, 15.0
+    return (r * r * math.acos(d / r) - d * math.sqrt(r * r - d * d)) / (math.pi * r * r)
+
+
 def _ex3_expected() -> float:
     from eotrack.experiments import track_init_hough as TH
 
@@ -87,9 +95,10 @@ register("track_init_hough.1", FunctionAnswer(
 
 register("track_init_hough.2", NumericAnswer(
     "Computation. Draw the clutter-only planted scene planted_scene(default_rng(2016), "
-    "PlantedConfig(), clutter_per_frame=30, n_objects=0, n_stars=0) and compute the §4.6 sum "
-    "Σ N₁N₂N₃ P₃ over the frame triples of triplet_shapes, every detection counted as "
-    "available (no depletion), with the planted scenes' gate, σ, α and field width.",
+    "PlantedConfig(), clutter_per_frame=30, n_objects=0, n_stars=0) and compute the number of "
+    "passing triples Σ N₁N₂N₃ P₃ over the frame triples of triplet_shapes (§4.6's first step: "
+    "every detection counted as available, before depletion and conflicts), with the planted "
+    "scenes' gate, σ, α and field width.",
     expected=_ex2_expected, rtol=1e-2,
     hint="N_f is the number of detections of frame f; P₃ is triplet_chance_probability of the "
          "three frames' times; the sum runs over every (a, b, c) of triplet_shapes(6)"))
@@ -111,12 +120,11 @@ register("track_init_hough.4", NumericAnswer(
     hint="the detections of track 5 are those with label 4; pair_parameters (§2) gives ρ, θ "
          "(radians) and v for a pair and its time difference"))
 
-register("track_init_hough.5", Choice(
-    "Critique. At the comparison's 10 px prediction gate with v_min = 10 px/s the angle-"
-    "constrained logic gives exactly the same tracks as logic 3/4. Which statement explains it? "
-    "(a) the angle test is applied after confirmation; (b) any point within 10 px of a "
-    "prediction at least 10 px ahead of the last point makes an angle above 90° there; "
-    "(c) clutter points never fall in the gate; (d) the angle constraint only acts for 2/3.",
-    options=["a", "b", "c", "d"], answer="b",
-    hint="draw the last point, the prediction at distance ≥ v_min·Δt and the gate circle: where "
-         "can a point of the circle lie relative to the line through the last two points?"))
+register("track_init_hough.5", NumericAnswer(
+    "Critique. The angle-constrained logic rejects a candidate X when the angle at the last point "
+    "P between the previous point and X is <= 90°. Take v_min = 15 px/s, Δt = 1 s and a gate "
+    "of radius r = 20 px around a prediction exactly v_min·Δt ahead of P. What fraction of the "
+    "gate's area holds candidates the constraint rejects?",
+    expected=_ex5_expected, rtol=1e-2,
+    hint="X is rejected when it lies behind the line through P perpendicular to the motion; that "
+         "line cuts the gate disc at distance v_min·Δt from its centre: a circular segment"))

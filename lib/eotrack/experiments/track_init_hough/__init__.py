@@ -154,20 +154,22 @@ def trial_counts(quick: bool = False, comparison: ComparisonConfig | None = None
                  planted: PlantedConfig | None = None) -> dict[str, int]:
     """Monte Carlo counts of ``make repro`` (``quick=False``) or of the test suite: Xu-scene
     redraws, comparison trials per point, auxiliary trials (logic rate, angle, Stone Soup),
-    planted scenes and clutter-only scenes per level of the chance-rate check."""
+    planted scenes and clutter-only scenes per level of the chance-rate check (``chance``: one
+    count per level of 20, 35, 50 per frame, sized so that every level's ratio has a Poisson
+    standard error of about 1.7 %)."""
     comp = comparison or ComparisonConfig()
     pl = planted or PlantedConfig()
     if quick:
-        return {"redraws": 20, "comparison": 4, "aux": 4, "planted": 20, "chance": 10}
+        return {"redraws": 20, "comparison": 4, "aux": 4, "planted": 20, "chance": (10, 10, 10)}
     return {"redraws": 100, "comparison": comp.n_trials, "aux": 20, "planted": pl.n_scenes,
-            "chance": 100}
+            "chance": (2500, 450, 200)}
 
 
 def reproduce(*, quick: bool = False, runner: TrialRunner | None = None,
               comparison: ComparisonConfig | None = None, n_redraws: int | None = None,
               n_trials: int | None = None, n_aux_trials: int | None = None,
               planted: PlantedConfig | None = None, n_scenes: int | None = None,
-              n_chance: int | None = None, seed: int | None = None) -> Reproduction:
+              n_chance: int | tuple[int, ...] | None = None, seed: int | None = None) -> Reproduction:
     """Run the 4-frame experiment, its redraws, the method comparison, the planted scenes and
     the extras.
 
@@ -286,7 +288,8 @@ def reproduce(*, quick: bool = False, runner: TrialRunner | None = None,
         f"{comp_cfg.logic_gate_px:g} px; classic Hough δρ = {cfg.cell_rho_px:g} px, "
         f"δθ = {comp_cfg.hough_d_theta_deg:g}°.\n\n"
         f"Planted scenes: {n_scenes} random scenes (claim track_init.planted_scenes); chance "
-        f"rate checked on {n_chance} clutter-only scenes per level.\n\n"
+        f"rate checked on {n_chance} clutter-only scenes at "
+        f"{'/'.join(f'{v:g}' for v in chance['clutter'])} per frame.\n\n"
         "Vote counting (our reading, see the notebook's errata): P(t) is the number of distinct "
         "frames among the detections recorded in Q(t); a confirmed track must also be one "
         "constant-velocity line consistent with its cell (one detection per frame).")

@@ -260,18 +260,49 @@ def _chance_trial(rng: np.random.Generator, cfg: PlantedConfig,
 
 
 def chance_rate_check(cfg: PlantedConfig | None = None, *,
-                      levels: tuple[float, ...] = (20.0, 35.0, 50.0), n_trials: int = 100,
-                      runner: TrialRunner | None = None, seed: int = 99) -> pd.DataFrame:
+                      levels: tuple[float, ...] = (20.0, 35.0, 50.0),
+                      n_trials: int | tuple[int, ...] = 100,
+                      runner: TrialRunner | None = None,
+                      seed: int | np.random.SeedSequence = 99) -> pd.DataFrame:
     """Clutter-only scenes: chance tracks of the verified initiator, measured vs analytic.
 
-    Returns one row per clutter level with the summed ``measured`` and ``analytic`` counts over
-    ``n_trials`` scenes, their ratio and the Poisson standard error of the ratio.
+    Parameters
+    ----------
+    cfg
+        Planted-scene configuration (field, frames, gate, noise, α).
+    levels
+        Clutter levels (false alarms per frame).
+    n_trials
+        Scenes per level: one count for every level, or one per level (the full run uses more
+        scenes at low density, where a scene holds fewer chance tracks, so that the Poisson
+        standard error of every level's ratio is about 1.7 %).
+    runner
+        Trial runner.
+    seed
+        Root seed; every level gets its own child stream.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per clutter level with the summed ``measured`` and ``analytic`` counts over
+        its scenes, their ratio and the Poisson standard error of the ratio.
     """
     cfg = cfg or PlantedConfig()
     runner = runner or TrialRunner(progress=False)
-    res = runner.map(_chance_trial, check_int(n_trials, "n_trials", min_value=1), seed=seed,
-                     args=(cfg, tuple(float(v) for v in levels)), desc="chance rate")
-    df = pd.DataFrame([r for trial in res for r in trial])
+    levels = tuple(float(v) for v in levels)
+    counts = (n_trials,) * len(levels) if isinstance(n_trials, (int, np.integer)) \
+        else tuple(n_trials)
+    if len(counts) != len(levels):
+        raise ValueError(f"n_trials must be one count or one per level ({len(levels)}), "
+                         f"got {n_trials!r}")
+    counts = tuple(check_int(c, "n_trials", min_value=1) for c in counts)
+    ss = seed if isinstance(seed, np.random.SeedSequence) else np.random.SeedSequence(seed)
+    rows = []
+    for lam, n_l, kid in zip(levels, counts, ss.spawn(len(levels))):
+        res = runner.map(_chance_trial, n_l, seed=kid, args=(cfg, (lam,)),
+                         desc=f"chance rate {lam:g}/frame")
+        rows.extend(r for trial in res for r in trial)
+    df = pd.DataFrame(rows)
     g = df.groupby("clutter").agg(measured=("measured", "sum"), analytic=("analytic", "sum"),
                                   scenes=("measured", "size")).reset_index()
     g["measured per scene"] = g["measured"] / g["scenes"]

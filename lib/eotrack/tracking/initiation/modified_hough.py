@@ -38,6 +38,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
+from scipy.stats import chi2 as _chi2_dist
 
 from eotrack.validation import as_finite_array, check_int, check_positive
 
@@ -838,21 +839,25 @@ class _VerifiedEngine:
         ok = ((nh >= self.need) & (chi <= self.thr[nh]) & (speed >= cfg.v_min)
               & (speed <= cfg.v_max))
         rows, pm, v, chi, nh = rows[ok], pm[ok], v[ok], chi[ok], nh[ok]
+        dof = 2 * (nh - 2)  # constant velocity: 2 coordinates × (hits − 2)
         if extra is not None and len(extra[0]):
             # accelerating four-hit tracks join the same best-first selection (more hits
-            # first); a CV track already among the rows wins its ties by a smaller χ²
+            # first, then by the p-value of the fit: their χ² has 2 degrees of freedom, a
+            # four-hit constant-velocity track's 4, so χ² values are not comparable)
             pm_a, v_a = extra[2], extra[3]
             if rows.shape[1] != extra[0].shape[1]:
                 raise AssertionError("accelerating tracks need m = 4")  # pragma: no cover
             rows = np.concatenate([rows, extra[0]])
             pm = np.concatenate([pm, pm_a])
             v = np.concatenate([v, v_a])
-            chi = np.concatenate([chi, extra[1] + 1e-9])
+            chi = np.concatenate([chi, extra[1]])
             nh = np.concatenate([nh, np.full(len(extra[0]), 4)])
+            dof = np.concatenate([dof, np.full(len(extra[0]), 2)])
         entry["candidate tracks"] = len(rows)
         if len(rows) == 0:
             return
-        order = np.lexsort((chi, -nh))
+        # within a hit count, rank by the fit's p-value (for one d.o.f. the same as by χ²)
+        order = np.lexsort((-_chi2_dist.logsf(chi, np.maximum(dof, 1)), -nh))
         pos = np.empty(len(rows), dtype=np.int64)
         pos[order] = np.arange(len(rows))
         win = greedy_disjoint(rows, pos, len(self.avail_flat))
