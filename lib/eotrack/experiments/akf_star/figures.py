@@ -75,9 +75,19 @@ def plot_curves_by_scenario(res: AblationResult, kind: str = "error", axes: Any 
     if kind not in ("error", "success"):
         raise ValueError(f"kind must be 'error' or 'success', got {kind!r}")
     n = len(res.scenarios)
+    legend_ax = None
     if axes is None:
-        fig, axes = plt.subplots(1, n, figsize=(3.1 * n, 3.4), sharey=True)
-        fig.subplots_adjust(wspace=0.08, bottom=0.3, top=0.82)
+        # two rows of three at book width: legible ticks and legend (one cell holds the legend)
+        ncol = min(n, 3)
+        nrow = -(-(n + 1) // ncol) if n > 1 else 1
+        fig, grid = plt.subplots(nrow, ncol, figsize=(3.3 * ncol, 2.9 * nrow + 0.6),
+                                 sharex=True, sharey=True, squeeze=False)
+        fig.subplots_adjust(wspace=0.1, hspace=0.35, top=0.88, bottom=0.1)
+        grid = grid.ravel()
+        for ax in grid[n:]:
+            ax.set_axis_off()
+        legend_ax = grid[n] if grid.size > n else None
+        axes = grid[:n]
     axes = np.ravel(axes)
     for i, (ax, sc) in enumerate(zip(axes, res.scenarios)):
         e = res.errors[i].astype(float)
@@ -88,15 +98,23 @@ def plot_curves_by_scenario(res: AblationResult, kind: str = "error", axes: Any 
             ax.set_yscale("log")
         else:
             ax.set_ylim(-0.02, 1.02)
-        ax.set_title(SCENARIO_LABELS.get(sc, sc), fontsize=9)
-        ax.set_xlabel("frame")
-    axes[0].set_ylabel("mean tracking error (px)" if kind == "error"
-                       else f"success rate (e ≤ {res.config.epsilon_px:g} px)")
-    axes[0].figure.legend(*axes[0].get_legend_handles_labels(), loc="lower center",
-                          ncol=len(res.variants), fontsize=8, frameon=False)
+        ax.set_title(SCENARIO_LABELS.get(sc, sc), fontsize=11)
+        ax.tick_params(labelsize=10, labelbottom=True, labelleft=True)
+        ax.set_xlabel("frame", fontsize=10)
+    ylabel = ("mean tracking error (px)" if kind == "error"
+              else f"success rate (e ≤ {res.config.epsilon_px:g} px)")
+    for ax in axes:
+        ax.set_ylabel(ylabel, fontsize=10)
+    handles = axes[0].get_legend_handles_labels()
+    if legend_ax is not None:
+        legend_ax.legend(*handles, loc="center", fontsize=11, frameon=False,
+                         title="variant", title_fontsize=11)
+    else:
+        axes[0].figure.legend(*handles, loc="lower center", ncol=len(res.variants),
+                              fontsize=10, frameon=False)
     axes[0].figure.suptitle(
         ("Fig. 6 — mean tracking error" if kind == "error" else "Fig. 7 — success rate")
-        + f" per scenario ({res.config.n_seeds} sequences each)", fontsize=10)
+        + f" per scenario ({res.config.n_seeds} sequences each)", fontsize=12)
     return axes[0].figure
 
 
