@@ -127,7 +127,10 @@ def test_curves_by_scenario_one_panel_per_scenario_and_bad_kind():
     res = A.AblationResult(np.ones((2, 2, 4, 20), np.float32), np.zeros((2, 2, 4, 20), np.int8),
                            np.ones((2, 2, 20)), ("cloud", "sway"), A.VARIANTS, cfg)
     fig = A.plot_curves_by_scenario(res, "success")
-    assert [ax.get_title() for ax in fig.axes] == ["cloud occlusion", "ship sway"]
+    # one panel per scenario; the spare cell of the grid holds only the legend
+    assert [ax.get_title() for ax in fig.axes if ax.get_title()] == ["cloud occlusion",
+                                                                     "ship sway"]
+    assert sum(ax.get_legend() is not None for ax in fig.axes) == 1
     plt.close(fig)
     with pytest.raises(ValueError, match="kind"):
         A.plot_curves_by_scenario(res, "median")

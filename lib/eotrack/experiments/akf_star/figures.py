@@ -82,7 +82,7 @@ def plot_curves_by_scenario(res: AblationResult, kind: str = "error", axes: Any 
         nrow = -(-(n + 1) // ncol) if n > 1 else 1
         fig, grid = plt.subplots(nrow, ncol, figsize=(3.3 * ncol, 2.9 * nrow + 0.6),
                                  sharex=True, sharey=True, squeeze=False)
-        fig.subplots_adjust(wspace=0.1, hspace=0.35, top=0.88, bottom=0.1)
+        fig.subplots_adjust(wspace=0.3, hspace=0.4, top=0.88, bottom=0.1, left=0.08, right=0.98)
         grid = grid.ravel()
         for ax in grid[n:]:
             ax.set_axis_off()
@@ -103,8 +103,10 @@ def plot_curves_by_scenario(res: AblationResult, kind: str = "error", axes: Any 
         ax.set_xlabel("frame", fontsize=10)
     ylabel = ("mean tracking error (px)" if kind == "error"
               else f"success rate (e ≤ {res.config.epsilon_px:g} px)")
-    for ax in axes:
-        ax.set_ylabel(ylabel, fontsize=10)
+    ncols = axes[0].get_gridspec().ncols if axes[0].get_subplotspec() is not None else 1
+    for i, ax in enumerate(axes):
+        if i % ncols == 0:
+            ax.set_ylabel(ylabel, fontsize=10)
     handles = axes[0].get_legend_handles_labels()
     if legend_ax is not None:
         legend_ax.legend(*handles, loc="center", fontsize=11, frameon=False,
