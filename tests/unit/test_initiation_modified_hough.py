@@ -304,3 +304,29 @@ def test_accelerating_objects_are_initiated_by_default():
     assert found(ModifiedHoughInitiator(v_min=3, v_max=240, accel_px_s2=0.0)) < n_obj
     with pytest.raises(ValueError, match="accel_px_s2"):
         ModifiedHoughInitiator(accel_px_s2=-1.0)
+
+
+def test_gapped_accelerating_windows_are_opt_in():
+    """``accel_gapped``: 4 detections in 5 frames (one missed inside) of accelerating objects."""
+    rng = np.random.default_rng(7)
+    t = np.array([0.0, 1.2, 2.1, 3.5, 4.4])
+    p0 = np.array([[80.0, 90.0], [400.0, 120.0], [250.0, 420.0]])
+    v0 = np.array([[40.0, 10.0], [-30.0, 25.0], [15.0, -35.0]])
+    acc = np.array([[3.0, -2.5], [-2.5, -3.0], [3.0, 2.5]])
+    frames = []
+    for k, tk in enumerate(t):
+        pos = p0 + v0 * tk + 0.5 * acc * tk**2
+        if k == 2:  # every object missed in the middle frame
+            pos = pos[:0]
+        xy = np.vstack([pos + rng.normal(0, 0.3, pos.shape), rng.uniform(0, 512, (5, 2))])
+        frames.append((float(tk), xy))
+
+    def found(ini):
+        tracks = ini.initiate(frames)
+        return sum(1 for tr in tracks if len(tr.hits) >= 4
+                   and len({d for _, d in tr.hits[:4]}) == 1 and tr.hits[0][1] < 3)
+
+    assert found(ModifiedHoughInitiator(v_min=3, v_max=240, accel_gapped=True)) == 3
+    assert found(ModifiedHoughInitiator(v_min=3, v_max=240)) < 3
+    with pytest.raises(TypeError, match="accel_gapped"):
+        ModifiedHoughInitiator(accel_gapped="yes")

@@ -87,6 +87,7 @@ from .trials import (
 )
 
 __all__ = [
+    "CHANCE_CHECK_FILE",
     "EXPLORE_CLUTTER",
     "EXPLORE_SCENES",
     "SLUG",
@@ -148,6 +149,10 @@ __all__ = [
 TITLE = ("Xu Z.W., Wang X., Track initiation in electro-optical tracking of space objects, Acta "
          "Astronomica Sinica 57(2):211-218, 2016 (modified Hough; with logic n/m, "
          "angle-constrained logic and classic Hough baselines)")
+
+
+CHANCE_CHECK_FILE = "chance_rate_check.csv"
+"""The committed run's clutter-only check (:func:`chance_rate_check`), written by ``make repro``."""
 
 
 def trial_counts(quick: bool = False, comparison: ComparisonConfig | None = None,
@@ -218,6 +223,12 @@ def reproduce(*, quick: bool = False, runner: TrialRunner | None = None,
     logic_ft = logic_false_track_table(comp_cfg, n_trials=n_aux_trials, runner=runner, xu=cfg)
     angle = angle_constraint_table(comp_cfg, n_trials=n_aux_trials, runner=runner, xu=cfg)
     chance = chance_rate_check(pl_cfg, n_trials=n_chance, runner=runner, seed=chance_seed)
+    if seed is None and not quick:   # the committed run's check, read by the notebook
+        from eotrack.repro import papers_repro_dir
+
+        out = papers_repro_dir() / SLUG
+        out.mkdir(parents=True, exist_ok=True)
+        chance.to_csv(out / CHANCE_CHECK_FILE, index=False)
     planted_df = run_planted(pl_cfg, n_scenes=n_scenes, runner=runner, xu=cfg)
     planted_summary = summarise_planted(planted_df)
     planted_metrics = summarise_metrics(planted_df)

@@ -285,8 +285,10 @@ def _method_comparison_row(claim, comp: pd.DataFrame, angle: pd.DataFrame,
             + ", ".join(f"{k} {piv_f.loc[top, k]:.3f}" for k in FIVE))
     note = ("(b) at the 10 px prediction gate the angle constraint never acts (a point within "
             "10 px of a prediction at least v_min·Δt = 10 px ahead always makes an angle > 90°), "
-            "so angle − plain is exactly 0 and (b) neither holds nor is reversed; it acts with "
-            f"wider gates and denser clutter: {angle_summary(angle)}")
+            "so angle − plain is exactly 0 and (b) is not testable at this gate (our assumption, "
+            "not the paper's): partial is our gate's doing; it acts with wider gates and denser "
+            f"clutter (unpaired, exploratory): {angle_summary(angle)}. The 'paper' modified Hough "
+            "is the paper's procedure plus our constant-velocity consistency check")
     if words["a"] != "holds":
         note += f"; (a) {words['a']}"
     if words["c"] != "holds" or mh_pc < 0.9:
@@ -344,7 +346,9 @@ def evaluate_planted(claim, planted: pd.DataFrame, chance_check: pd.DataFrame,
         mm = meas(lit)
         note = (f"the paper's literal procedure misses the criterion (recall {mm['recall']:.3f} "
                 f"vs >= 0.95, false/chance {mm['false_over_chance']:.2f} vs <= 1.5); our "
-                "verified variant's result (variant column) does not count")
+                "verified variant's result (variant column) does not count; 'paper' = the "
+                "paper's procedure plus our constant-velocity check, and the chance yardstick "
+                "is our χ² rule's, not the cell rule's (the recall half decides)")
     return ClaimResult.from_claim(
         claim, paper="several objects initiated in a few frames, residual stars no obstacle "
                      "(one 4-frame scene)",
