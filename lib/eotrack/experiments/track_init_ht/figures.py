@@ -13,7 +13,7 @@ import numpy as np
 import pandas as pd
 from matplotlib.figure import Figure
 from matplotlib.patches import Rectangle
-from matplotlib.ticker import LogFormatter, NullLocator
+from matplotlib.ticker import LogFormatter, MaxNLocator, NullLocator
 
 from eotrack.plotting import get_ax
 from eotrack.tracking import hypothesis as hyp
@@ -111,6 +111,7 @@ def plot_fig1(res: Fig1Result, *, s_max: int = 12, ax: plt.Axes | None = None) -
         ax.plot(s[ok], res.mc_pda[j, sel][ok], "o", mfc="none", color=c, ms=5)
     ax.plot([], [], "o", mfc="none", color="gray", label="Monte Carlo (pixels)")
     ax.set_ylim(1e-9, 2)
+    ax.xaxis.set_major_locator(MaxNLocator(integer=True))  # S is an integer
     ax.set_xlabel("clustering threshold S")
     ax.set_ylabel("probability")
     w = res.settings
@@ -260,8 +261,8 @@ def plot_fig7(runs: dict[float, dict[str, Any]], sweep: pd.DataFrame | None = No
               paper_snr: float = 2.0, fig: plt.Figure | None = None) -> plt.Figure:
     """Fig. 7: confirmed tracks against the true paths, one panel per curved-target SNR.
 
-    ``runs`` maps an SNR to a kept run (:func:`~.sequences.sweep_example`: run 0 of the sweep at
-    that SNR, so each panel is one member of the sweep); ``sweep`` (:func:`~.sequences.snr_sweep`)
+    ``runs`` maps an SNR to a kept run (:func:`~.sequences.sweep_example`: a member of the sweep
+    at that SNR, its index in the title); ``sweep`` (:func:`~.sequences.snr_sweep`)
     adds that SNR's recovery share over all runs to the title. The SNR ``paper_snr`` is the
     paper's; any other is labelled exploratory.
     """
@@ -280,7 +281,8 @@ def plot_fig7(runs: dict[float, dict[str, Any]], sweep: pd.DataFrame | None = No
         ax.set_xlabel("x (px)")
         ax.set_ylabel("y (px)")
         tag = "paper's SNR" if float(snr) == float(paper_snr) else "exploratory"
-        line2 = f"run 0: main {cov[0]:.0%}, curved {cov[-1]:.0%} of frames tracked"
+        line2 = (f"run {run.get('run_index', 0)}: main {cov[0]:.0%}, curved {cov[-1]:.0%} "
+                 "of frames tracked")
         line3 = ""
         if sweep is not None:
             row = sweep.loc[np.isclose(sweep["SNR"], float(snr))]
@@ -318,7 +320,7 @@ def plot_measured_vs_formula(exp: dict[str, Any], *, ax: plt.Axes | None = None)
 
 def plot_snr_sweep(df: pd.DataFrame, *, ax: plt.Axes | None = None) -> plt.Axes:
     """Recovery of the curved target versus SNR."""
-    ax = get_ax(ax, figsize=(4.4, 3.4))
+    ax = get_ax(ax, figsize=(6.0, 4.6))
     y = df["recovered share"].to_numpy()
     err = np.vstack([y - df["CP low"].to_numpy(), df["CP high"].to_numpy() - y])
     ax.errorbar(df["SNR"], y, yerr=err, fmt="o-", capsize=3,
@@ -328,8 +330,14 @@ def plot_snr_sweep(df: pd.DataFrame, *, ax: plt.Axes | None = None) -> plt.Axes:
     ax.set_xlabel("peak SNR of the curved 3×3 target")
     ax.set_ylabel("fraction")
     ax.set_ylim(-0.03, 1.03)
+    snr = df["SNR"].to_numpy(dtype=float)
+    ax.set_xticks(snr)  # the sweep's integer SNR grid
+    ax.set_xticklabels([f"{v:g}" for v in snr])
+    ax.set_xlim(snr.min() - 0.4, snr.max() + 0.4)  # no point on the frame
     ax.set_title("Fig. 7 target: recovery versus SNR (same scene, same noise)")
-    ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0))  # off the data
+    # below the axes: the curves rise from bottom-left to top-right and fill the frame
+    ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.18), ncol=1,
+              frameon=False)
     ax.figure.tight_layout()
     return ax
 

@@ -292,11 +292,22 @@ def snr_sweep(st: SequenceSettings, snrs: list[float], n_runs: int, *,
 
 
 def sweep_example(st: SequenceSettings, snr: float, n_runs: int, *,
-                  seed: int | np.random.SeedSequence = 3) -> dict[str, Any]:
-    """Run 0 of :func:`snr_sweep` (and of :func:`sequence_experiment`) at ``snr``, kept for plots.
+                  seed: int | np.random.SeedSequence = 3,
+                  recovered: bool = False) -> dict[str, Any]:
+    """A run of :func:`snr_sweep` (and of :func:`sequence_experiment`) at ``snr``, kept for plots.
 
-    The same generator as the sweep's first sequence, so a Fig. 7 panel shows a member of the
-    sweep, not another draw.
+    The same generators as the sweep's sequences, so a Fig. 7 panel shows a member of the
+    sweep, not another draw. ``recovered=False``: run 0. ``recovered=True``: the first run
+    (in the sweep's order) whose curved target is recovered (coverage ≥ 0.5), or run 0 if
+    none is. The returned dict holds ``"run_index"``.
     """
-    rng = trial_generators(seed, n_runs)[0]
-    return run_sequence(rng, replace(st, curved_snr=float(snr)), keep=True)
+    gens = trial_generators(seed, n_runs)
+    st_snr = replace(st, curved_snr=float(snr))
+    first = None
+    for i, rng in enumerate(gens if recovered else gens[:1]):
+        run = run_sequence(rng, st_snr, keep=True)
+        run["run_index"] = i
+        first = first if first is not None else run
+        if not recovered or run["coverage"][-1] >= 0.5:
+            return run
+    return first
