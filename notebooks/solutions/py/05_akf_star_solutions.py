@@ -65,10 +65,15 @@ assert check("akf_star.2", d)
 
 # %%
 diurnal = A.diurnal_check(n_stars=60, min_alt_deg=30)
-answer = float(diurnal["rel_error_paper"].median())
+d = diurnal[["azimuth_deg", "altitude_deg", "astropy_cosh_Adot", "astropy_hdot"]]
+Az, h = np.radians(d["azimuth_deg"]), np.radians(d["altitude_deg"])
+w_e = 7.292115e-5                                    # Earth's rotation rate (rad/s)
+paper = np.c_[-w_e * np.sin(Az) * np.cos(h), -w_e * np.cos(Az) * np.cos(h)]   # eq. (12)
+obs = np.c_[d["astropy_cosh_Adot"], d["astropy_hdot"]]
+answer = float(np.median(np.linalg.norm(paper - obs, axis=1) / np.linalg.norm(obs, axis=1)))
 assert check("akf_star.3", answer)
+assert np.isclose(answer, diurnal["rel_error_paper"].median(), rtol=1e-6)
 # the mapping matters: read (u̇, v̇)/f as (ḣ, cos h·Ȧ) instead and the number changes
-obs = np.c_[diurnal["astropy_cosh_Adot"], diurnal["astropy_hdot"]]
 swapped = np.c_[diurnal["paper_hdot"], diurnal["paper_cosh_Adot"]]
 other = float(np.median(np.linalg.norm(swapped - obs, axis=1) / np.linalg.norm(obs, axis=1)))
 assert not check("akf_star.3", other)
@@ -94,7 +99,7 @@ display(Markdown(", ".join(f"{v}: mean error {e.mean():.2f} px, final {e[-1]:.2f
 # During a 25-frame (5 s) occlusion the ship's sway moves the star by many pixels while the
 # filter can only predict; whether it re-acquires the star depends on the gate, on how far
 # the constant-acceleration prediction drifted, and on how much the filter trusts the dimmed
-# measurements. The final errors above show that, with the pre-registered settings, no
+# measurements. The final errors above show that, with the status settings (γ = 3), no
 # variant ends near the star: the confidence filter is no better at re-acquiring it than the
 # standard KF. Move γ and λ in *Explore* on this sequence and watch whether any setting brings
 # BEAK-ST back inside the gate — and remember that a setting found this way is exploratory.
@@ -103,9 +108,12 @@ display(Markdown(", ".join(f"{v}: mean error {e.mean():.2f} px, final {e[-1]:.2f
 
 # %%
 t1 = np.asarray(load_claims("akf_star")["akf_star.table1"].paper["mean_error_px"])
-answer = float(100 * (1 - t1[:, 3].mean() / t1[:, 0].mean()))
+per_scenario = 100 * (1 - t1[:, 3] / t1[:, 0])
+answer = float(np.median(per_scenario))
 assert check("akf_star.5", answer)
-display(Markdown(f"Table 1 gives a {answer:.0f} % reduction, not the abstract's 40 %."))
+display(Markdown(f"Per scenario Table 1 gives reductions of {per_scenario.min():.0f}–"
+                 f"{per_scenario.max():.0f} %, median {answer:.1f} % — every one above the "
+                 "abstract's 40 %."))
 
 # %% [markdown]
 # The abstract and the table disagree; either the abstract compares with another
