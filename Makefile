@@ -8,8 +8,9 @@ NB_SAN  := tests/notebooks/sanitize.cfg
 	browser ci lab bench mutation execute clean book
 
 # pytest-xdist workers for the test targets (one per core of the 2-core reference machine);
-# `make test JOBS=1` runs serially. Notebooks are distributed whole (--dist loadfile): nbval runs
-# a notebook's cells in order in one kernel.
+# `make test JOBS=1` runs serially. Items are spread by group (--dist loadfile, groups set in
+# ./conftest.py): a file's items stay together (nbval runs a notebook's cells in order in one
+# kernel), and a paper's tests share a worker with its figure lint (one quick run of the paper).
 JOBS    ?= 2
 XDIST   := $(if $(filter-out 1,$(JOBS)),-n $(JOBS) --dist loadfile,)
 NBVAL   := --nbval-lax --nbval-sanitize-with $(NB_SAN) --nbval-cell-timeout=600
