@@ -254,8 +254,16 @@ fig = TH.plot_rho_theta_votes(scene, cfg, target=1)
 #   of the three times (Exercise 1) — the engine looks that disc up for every seed pair at once;
 # * the triplets a 3-of-4 track can end with at frame k are $(k-2, k-1, k)$, $(k-3, k-2, k)$ and
 #   $(k-3, k-1, k)$; each is searched from a seed pair two frames apart; the passing triplets are
-#   extended to the window's fourth frame when it fits, ranked (more hits, then smaller χ²) and
-#   accepted best first, each detection in one track.
+#   extended to the window's fourth frame when it fits, ranked (more hits, then the fit's
+#   p-value) and accepted best first, each detection in one track;
+# * the library default also searches **four-hit constant-acceleration** tracks over frames
+#   k−3…k (`accel_px_s2 = 3.0`, quadratic fit, χ² with 2 d.o.f.), which join the same ranking.
+#   Every "ours" number of §5–§7 uses this default; the chance formula of §4.6 and its
+#   clutter-only check describe the rule with the search off (`accel_px_s2 = 0`), which in
+#   clutter-only scenes makes the same count to within 1 in 750.
+#
+# Its gate defaults (`v_max` = 240 px/s) are the paper's 512 px scale; a wider field needs a
+# wider gate, or faster objects are silently never initiated.
 #
 # The disc *is* the test. Check by hand on one triplet, then with the library's batch fit:
 
@@ -298,12 +306,15 @@ pd.DataFrame(run.log)
 # over the triplet shapes of every frame (`triplet_shapes`) gives the expected number of
 # passing triples, an upper bound. `chi2_chance_tracks` applies three corrections: a residual
 # star cannot pair with itself (inclusion–exclusion over shared stars); passing triples of one
-# frame that share a detection are confirmed once (**conflicts**: a detection of frame f lies in
-# $\mu_f = E_f/N_f$ passing triples, so $\sum_f E_f^2/2N_f$ fewer tracks); and a confirmed
+# frame that share a detection are confirmed once (**conflicts**: for each confirmation frame k,
+# $E_f$ is the expected number of passing triples ending at k that use frame f, for *every*
+# frame f of the window, and $N_f$ the depleted count of frame f; a detection lies in
+# $\mu_f = E_f/N_f$ of them, so $\sum_f E_f^2/2N_f$ fewer tracks, capped at half of frame k's
+# triples to stay a second-order correction); and a confirmed
 # chance track uses up its detections (**depletion**, frame by frame, mean-field). An earlier
-# version without the conflict term claimed to be "exact in expectation"; the clutter-only check
-# of §5 measured 0.87–0.93 of it (3.3 s.e. low at 50 per frame). With it, the check below is
-# re-run in §5. Check $P_3$ against brute force:
+# version without the conflict term was ~8 % high at 50 per frame; §5 checks the corrected count
+# on clutter-only scenes. Check $P_3$ against brute force (400 000 triples: ~4,300 pass, so the
+# 5 % tolerance is ~3 s.e.):
 
 # %%
 rng = np.random.default_rng(0)
@@ -315,7 +326,7 @@ speed = np.hypot(*u_fit.T)
 passed = (rss / sig_big**2 <= chi2.ppf(0.99, 2)) & (speed >= 3) & (speed <= 20)
 p_formula = TH.triplet_chance_probability(*t3, width=L, v_min=3, v_max=20, sigma_px=sig_big,
                                           alpha=0.01)
-assert abs(passed.mean() / p_formula - 1) < 0.15
+assert abs(passed.mean() / p_formula - 1) < 0.05
 display(Markdown(f"$P_3$: formula {p_formula:.3g}, brute force {passed.mean():.3g} "
                  f"({n_mc} random triples)."))
 
@@ -328,7 +339,8 @@ display(Markdown(f"$P_3$: formula {p_formula:.3g}, brute force {passed.mean():.3
 # point whose angle at the middle of the last three points is ≤ 90° ("V" shapes). With
 # $r$ = 10 px and $v_{min}$ = 10 px/s the prediction lies at least 10 px ahead of the last point,
 # so every point of the gate makes an angle > 90° there: the constraint can only act when
-# $r > v_{min}\Delta t$. The logic rule's chance rate in uniform clutter is
+# $r > v_{min}\Delta t$. *Our approximation* (not validated: Beyond measures it 0.6–3 × off) of
+# the logic rule's chance rate in uniform clutter is
 #
 # $$ R = N_c \sum_{\Delta=1}^{m-1} N_c\, p_\Delta \;
 #   \Pr\Big[\sum_{j=1}^{m-1-\Delta} B_j \ge n-2\Big],\qquad
@@ -480,11 +492,20 @@ angle.pivot_table(index=["clutter", "gate_px"], columns="method",
 # before the run): 2–8 objects at 5–150 px/s in random directions, each detection missed with
 # probability 0.1, 10–40 static residual stars, uniform clutter of 5–50 per frame, σ = 0.3 px;
 # every initiator gets the gate [3, 240] px/s. First the chance rate of §4.6 against clutter-only
-# scenes; the planted criterion multiplies the formula by what it is worth, the pooled
-# measured/analytic ratio:
+# scenes (with the acceleration search off, the rule the formula describes); the planted
+# criterion multiplies the formula by what it is worth, the pooled measured/analytic ratio.
+# The check needs many scenes at low density — 2,500 / 450 / 200 at 20 / 35 / 50 per frame, so
+# that every level's ratio has a standard error of ~1.7 % (100 scenes per level gave 7 % at
+# 20 per frame, too little to test a 5 % criterion). `make repro` runs it (≈ 2 min) and writes
+# `papers_repro/track_init_hough/chance_rate_check.csv`, which this cell reads; with
+# `QUICK = True`, or without that file, it runs the test suite's 10 scenes per level.
 
 # %%
-chance = TH.chance_rate_check(pl_cfg, n_trials=N["chance"], runner=runner)
+_chance_file = papers_repro_dir() / TH.SLUG / TH.CHANCE_CHECK_FILE
+if not QUICK and _chance_file.exists():
+    chance = pd.read_csv(_chance_file)
+else:
+    chance = TH.chance_rate_check(pl_cfg, n_trials=N["chance"], runner=runner)
 ax = TH.plot_chance_check(chance)
 k_chance = TH.calibrated_chance_factor(chance)
 display(Markdown("measured/analytic: " + ", ".join(
@@ -498,7 +519,7 @@ planted_df = TH.run_planted(pl_cfg, n_scenes=N["planted"], runner=runner, xu=cfg
 summary = TH.summarise_planted(planted_df)
 p_pl = claims["track_init.planted_scenes"].paper
 fig = TH.plot_planted_summary(summary, recall_min=p_pl["recall_min"],
-                              ratio_max=p_pl["false_over_chance_max"])
+                              ratio_max=p_pl["false_over_chance_max"], chance_factor=k_chance)
 summary
 
 # %%
@@ -536,6 +557,13 @@ abl_r = abl.pivot(index="method", columns="condition", values="recall")
 abl_m = abl.pivot(index="method", columns="condition", values="mixing per scene")
 assert abl_r.loc["logic 2/3", "objects only"] > abl_r.loc["logic 2/3", "as planted"]
 display(abl_r.round(3), abl_m.round(2))
+_h = abl[abl["method"] == "classic Hough 3/4"].set_index("condition")
+_dz = ((_h.loc["as planted", "recall"] - _h.loc["no residual stars", "recall"])
+       / np.hypot(_h.loc["as planted", "recall s.e."], _h.loc["no residual stars", "recall s.e."]))
+display(Markdown(f"(About {int(abl['eligible'].mean())} objects per condition: the classic "
+                 f"Hough's recall as planted minus without residual stars is {_dz:.1f} binomial "
+                 "s.e. — " + ("within noise" if abs(_dz) < 2 else "beyond noise")
+                 + "; read only the large differences.)"))
 gate_share = float(TH.distance_cdf_square(240.0, 512) - TH.distance_cdf_square(3.0, 512))
 rng_h = np.random.default_rng(3)
 chance_peak = []  # highest classic-Hough cell of the non-object detections of 4 frames
@@ -608,30 +636,33 @@ explore = panel(draw, tight=False,
 # %% [markdown]
 # ## 8 · Errata and deviations
 #
-# * **Tables 1 and 2 are lost** in the source. Table 1 is ours, changed twice after seeing
-#   results (tracks 4 and 5 first 1.3 px apart in frame 2; track 3 first 3 px from a catalogue
-#   star). Table 2's columns are reproduced in form only. Residual stars are Gaia DR3 positions;
-#   the fraction left by star removal is our assumption.
+# * **Tables 1 and 2 are lost.** Table 1 is ours, changed twice after seeing results (tracks 4
+#   and 5 were 1.3 px apart in frame 2; track 3 was 3 px from a star), recorded as
+#   after-results history. Track 2's loss by the 6-neighbourhood depends on our chosen velocity
+#   and position, and the redraws vary only stars and noise, so "not reproduced" is partly a
+#   property of our Table 1. Table 2 is reproduced in form only. The residual-star fraction is
+#   our assumption.
 # * **Eq. (8)** read as "+1 per current frame" contradicts the paper's confirmation frames; we
-#   count the distinct frames whose detections are in Q(t) (§4.3).
-# * **Lost formulas** (gate, θ of a pair, ranges, P/Q updates, neighbour test) are rebuilt in
-#   §4.3; their numbering is uncertain (the digest calls the gate (7); the step list updates P
-#   and Q "by (7) and (8)" and expires votes "by (9)").
-# * **Direction s**: "+ = increasing x and y" is ambiguous; + is along $(\sin\theta, -\cos\theta)$.
-#   **Origin of ρ** is not stated; we use the image corner (§4.4, Explore).
-# * **Constant-velocity check** (our addition to the literal procedure): a confirmed cell must
-#   give one detection per frame on a constant-velocity track of the cell, else static residual
-#   stars make false tracks the paper does not report.
+#   count distinct frames in Q(t) (§4.3). The lost formulas are rebuilt in §4.3, with uncertain
+#   numbering ("(7) and (8)", "(9)").
+# * **Direction s** is ambiguous in the text: + is along $(\sin\theta, -\cos\theta)$. The
+#   **origin of ρ** is not stated; we use the image corner.
+# * **Constant-velocity check** (ours): a confirmed cell must give one detection per frame on a
+#   constant-velocity track of the cell (pairs in the cell or a 26-neighbour, residual ≤ δρ/2).
+#   Every "modified Hough 3/4 (paper)" row is the paper's procedure *plus this check*. Without
+#   it, static residual stars make many more false tracks; the statuses do not change.
 # * **6-neighbourhood**: an object seen in three frames is lost when its two pair cells differ
-#   in two of (ρ, θ, v) — track 2 of our nominal scene. The status of `xu_table2` and `xu_fig3`
-#   is the paper's method's: *not reproduced* (right in about half of the redraws). The
-#   26-neighbourhood and the verified initiator recover the scene (the scorecard's *variant*
-#   column), which cannot make the paper's claim reproduced. `literal=True` reproduces our
-#   Table 2 exactly as before the verified engine (a test pins it).
+#   in two of (ρ, θ, v). The 26-neighbourhood and the verified initiator recover the scene
+#   (*variant* column), which cannot make the paper's claim reproduced.
+# * **Planted yardstick**: the chance rate of the planted criterion is our χ² rule's (a disc of
+#   ~1.4–2 px), not that of the paper's 5 px × 5° × 3 px/s cell. The recall half decides.
+# * **Logic details** left open: heads stay open for their window, a 10 px gate, and conflicts
+#   go to the track with more points. At that gate the angle constraint cannot act (§4.7), so
+#   (b) of the method comparison is not testable there. Its *partial* is our gate's doing.
 # * **Hand-off**: a confirmed track claims its later detections within 5 px of its prediction.
-# * **Logic details** left open: heads stay open for their window, a 10 px gate, conflicts to
-#   the track with more points; with that gate the angle constraint cannot act (§4.7), so claim
-#   (b) of the method comparison neither holds nor is reversed.
+# * **Review of issue 27, second round**: 18 findings (3 high, 8 medium, 7 low). 15 are fixed
+#   or answered here. Three are left open: the held-out target (Beyond, not met), the bare
+#   procedure without the CV check (not shown), and Table 1 redraws over random tables.
 
 # %% [markdown]
 # ## 9 · Beyond the paper
@@ -695,6 +726,39 @@ display(Markdown(
     "its three updates. A likely cause (not traced here) is its start from one detection with "
     "the wide velocity prior: the first gate holds every point the speed allows, so clutter "
     "competes for each update under global nearest neighbour. Without clutter it loses none."))
+
+# %% [markdown]
+# ### A held-out family (issue 27's "Generalise" target, not met)
+#
+# Scenes the default was *not* sized on: 8 irregular frames (0.6–1.6 s apart), P_D 0.8, a
+# burst of 150 false alarms in one frame, objects accelerating by up to ±3 px/s² (the
+# default's `accel_px_s2`) and ±5 px/s² (beyond it), seed 777 (the default was sized on
+# seed 11). Target: recall ≥ 0.90 with no more false tracks than logic 3/4. The opt-in
+# `accel_gapped=True` also searches 4 detections in 5 frames (about 1.6× the time per frame).
+
+# %%
+from dataclasses import replace as _replace
+
+from eotrack.tracking.initiation import LogicInitiator
+
+held_inits = {"ours (default)": ModifiedHoughInitiator(v_min=3, v_max=240),
+              "ours, accel_gapped": ModifiedHoughInitiator(v_min=3, v_max=240, accel_gapped=True),
+              "logic 3/4": LogicInitiator(n=3, m=4, v_min=3, v_max=240, gate_px=10.0)}
+held_rows = []
+for acc in (3.0, 5.0):
+    h_cfg, h_rng = _replace(TH.HeldOutConfig(), accel_px_s2=acc), np.random.default_rng(777)
+    tot = {k: np.zeros(3) for k in held_inits}
+    n_held = max(2, N["aux"] // 2)
+    for _ in range(n_held):
+        h_sc = TH.heldout_scene(h_rng, h_cfg)
+        for name, ini in held_inits.items():
+            r = TH.score_tracks(ini.initiate(h_sc.frames), h_sc)
+            tot[name] += (r["correct"], r["eligible"], r["false"])
+    held_rows += [{"accel (px/s²)": acc, "initiator": k, "scenes": n_held,
+                   "recall": c / max(e, 1), "false per scene": f / n_held}
+                  for k, (c, e, f) in tot.items()]
+held = pd.DataFrame(held_rows)
+held.round(3)
 
 # %% [markdown]
 # ### Speed
@@ -764,8 +828,9 @@ if disc_factor(0.0, 1.0, 2.0, 1) is not None:
 # %% [markdown]
 # **Exercise 2 (computation).** Draw the clutter-only scene
 # `TH.planted_scene(np.random.default_rng(2016), pl_cfg, clutter_per_frame=30, n_objects=0,
-# n_stars=0)` and compute the expected number of chance tracks of the χ² 3-of-4 rule in it
-# (the planted scenes' gate, σ, α).
+# n_stars=0)` and compute the number of passing triples $\sum N_1N_2N_3P_3$ over the frame
+# triples of `triplet_shapes` — §4.6's first step, every detection counted as available, before
+# depletion and conflicts (the planted scenes' gate, σ, α).
 
 # %%
 answer = None  # your answer here
@@ -796,14 +861,13 @@ if answer is not None:
     check("track_init_hough.4", answer)
 
 # %% [markdown]
-# **Exercise 5 (critique).** At the comparison's 10 px gate with $v_{min}$ = 10 px/s the
-# angle-constrained logic gives the same tracks as logic 3/4. Why? (a) the angle test runs after
-# confirmation; (b) any point within 10 px of a prediction at least 10 px ahead makes an angle
-# above 90° at the last point; (c) clutter never falls in the gate; (d) the constraint only acts
-# for 2/3.
+# **Exercise 5 (critique).** The angle-constrained logic rejects a candidate X when the angle at
+# the last point P between the previous point and X is ≤ 90°. Take $v_{min}$ = 15 px/s,
+# Δt = 1 s and a gate of radius r = 20 px around a prediction exactly $v_{min}\Delta t$ ahead of
+# P. What fraction of the gate's area holds candidates that the constraint rejects?
 
 # %%
-answer = None  # "a", "b", "c" or "d"
+answer = None  # a number in [0, 1]
 if answer is not None:
     check("track_init_hough.5", answer)
 

@@ -275,7 +275,10 @@ def reproduce(*, quick: bool = False, runner: TrialRunner | None = None,
     plot_logic_false_tracks(logic_ft, ax=ax)
     figs["beyond_logic_false_track_rate"] = fig
     figs["rho_theta_voting"] = plot_rho_theta_votes(scene, cfg, target=1)
-    figs["planted_scenes"] = plot_planted_summary(planted_summary)
+    p_pl = claims["track_init.planted_scenes"].paper
+    figs["planted_scenes"] = plot_planted_summary(
+        planted_summary, recall_min=p_pl["recall_min"], ratio_max=p_pl["false_over_chance_max"],
+        chance_factor=calibrated_chance_factor(chance))
     fig, ax = plt.subplots()
     plot_chance_check(chance, ax=ax)
     figs["chance_rate_check"] = fig

@@ -16,6 +16,7 @@ from eotrack.plotting import get_ax
 from eotrack.tracking.initiation.base import Track, validate_frames
 from eotrack.tracking.initiation.modified_hough import ModifiedHoughInitiator, pair_parameters
 from eotrack.tracking.initiation.pairs import gated_pairs
+from eotrack.validation import check_positive
 
 from .chance import chi2_chance_tracks
 from .scenario import PlantedConfig, Scene, XuConfig, planted_scene, score_tracks, xu_config
@@ -216,13 +217,18 @@ def plot_angle_constraint(df: pd.DataFrame, ax: plt.Axes | None = None) -> plt.A
 
 def plot_chance_check(df: pd.DataFrame, ax: plt.Axes | None = None) -> plt.Axes:
     """Chance tracks per clutter-only scene: analytic (line) versus measured (markers, ±1 s.e.)."""
+    from matplotlib.ticker import NullFormatter, ScalarFormatter
+
     ax = get_ax(ax)
     ax.plot(df["clutter"], df["analytic per scene"], "-", label="analytic (χ² 3-of-4 rule)")
     err = np.sqrt(df["measured"].clip(lower=1)) / df["scenes"]
     ax.errorbar(df["clutter"], df["measured per scene"], yerr=err, fmt="o", ms=5,
-                label="measured (verified initiator)")
+                label="measured (verified initiator, acceleration search off)")
     ax.set_xscale("log")
     ax.set_yscale("log")
+    ax.set_xticks(list(df["clutter"]))
+    ax.xaxis.set_major_formatter(ScalarFormatter())
+    ax.xaxis.set_minor_formatter(NullFormatter())
     ax.set_xlabel("clutter points per frame")
     ax.set_ylabel("chance tracks per scene")
     ax.legend(fontsize=8)
@@ -230,25 +236,30 @@ def plot_chance_check(df: pd.DataFrame, ax: plt.Axes | None = None) -> plt.Axes:
 
 
 def plot_planted_summary(summary: pd.DataFrame, axes=None, *, recall_min: float = 0.95,
-                         ratio_max: float = 1.5):
-    """Recall (left) and false tracks per scene against the chance rate (right) per
-    initiator; dashed lines: the criterion."""
+                         ratio_max: float = 1.5, chance_factor: float = 1.0):
+    """Recall (left) and false tracks per scene against the calibrated chance rate (right) per
+    initiator; dashed lines: the criterion. ``chance_factor``: the clutter-only check's pooled
+    measured/analytic ratio (:func:`~.claims.calibrated_chance_factor`)."""
+    check_positive(chance_factor, "chance_factor")
     if axes is None:
         fig, axes = plt.subplots(1, 2, figsize=(11, 3.8))
     else:
         fig = axes[0].figure
     y = np.arange(len(summary))
     axes[0].barh(y, summary["recall"], color="tab:blue")
-    axes[0].axvline(recall_min, color="k", ls="--", lw=1)
+    axes[0].axvline(recall_min, color="k", ls="--", lw=1, label=f"criterion ≥ {recall_min:g}")
     axes[0].set_yticks(y, summary["method"], fontsize=8)
     axes[0].set_xlabel("recall (objects initiated / eligible)")
     axes[0].set_xlim(0, 1)
-    axes[1].barh(y, summary["false per scene"], color="tab:red", label="measured")
-    chance = float(summary["chance per scene"].iloc[0])
-    axes[1].axvline(chance, color="k", lw=1, label="analytic chance rate")
+    axes[0].legend(fontsize=7, loc="lower right")
+    # markers, not bars: a bar's length means nothing on a log axis
+    axes[1].plot(summary["false per scene"], y, "o", color="tab:red", label="measured")
+    chance = chance_factor * float(summary["chance per scene"].iloc[0])
+    axes[1].axvline(chance, color="k", lw=1, label="calibrated chance rate")
     axes[1].axvline(ratio_max * chance, color="k", ls="--", lw=1,
-                    label=f"{ratio_max:g} × chance rate")
+                    label=f"criterion ≤ {ratio_max:g} × chance rate")
     axes[1].set_yticks(y, [""] * len(y))
+    axes[1].set_ylim(-0.5, len(y) - 0.5)
     axes[1].set_xscale("log")
     axes[1].set_xlabel("false tracks per scene")
     axes[1].legend(fontsize=7)

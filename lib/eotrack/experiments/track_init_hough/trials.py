@@ -333,8 +333,9 @@ def recall_ablation(cfg: PlantedConfig | None = None, *, n_scenes: int = 30,
     objects with the clutter, the residual stars or both removed (paired scenes), and the false
     tracks that hold an object's detection (``tracks mixing an object``).
 
-    Returns one row per condition and method: ``recall``, ``false per scene``, ``mixing per
-    scene`` and the mean detections per frame.
+    Returns one row per condition and method: ``recall`` with its binomial standard error and
+    the ``eligible`` objects, ``false per scene``, ``mixing per scene`` and the mean detections
+    per frame.
     """
     cfg = cfg or PlantedConfig()
     xu = xu or xu_config()
@@ -351,5 +352,6 @@ def recall_ablation(cfg: PlantedConfig | None = None, *, n_scenes: int = 30,
     g["false per scene"] = g["false"] / g["scenes"]
     g["mixing per scene"] = g["mixing"] / g["scenes"]
     g["detections per frame"] = g["det"]
-    return g[["condition", "method", "recall", "false per scene", "mixing per scene",
-              "detections per frame"]]
+    g["recall s.e."] = np.sqrt(g["recall"] * (1 - g["recall"]) / g["eligible"].clip(lower=1))
+    return g[["condition", "method", "recall", "recall s.e.", "eligible", "false per scene",
+              "mixing per scene", "detections per frame"]]
