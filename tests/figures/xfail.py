@@ -33,14 +33,4 @@ XFAIL: dict[str, str] = {
     "report:track_init_hough/fig3_extracted_tracks": "P04",  # legend-covers-data 2, small-text 50,
     "report:track_init_hough/planted_scenes": "P04",  # axis-label 1, small-text 19, title 1, too-w
     "report:track_init_hough/rho_theta_voting": "P04",  # small-text 57, too-wide 1
-    "report:track_init_ht/beyond_initiator_vs_eq12_13": "P03",  # small-text 4
-    "report:track_init_ht/fig1_area_probabilities": "P03",  # small-text 20
-    "report:track_init_ht/fig2_sequence_track_detection": "P03",  # small-text 9
-    "report:track_init_ht/fig5_spatial_clustering": "P03",  # legend-covers-data 1, small-text 2
-    "report:track_init_ht/fig6_temporal_test_tracks": "P03",  # legend-covers-data 1, small-text 3
-    "report:track_init_ht/fig7_curved_target_tracks": "P03",  # small-text 36
-    "report:track_init_ht/fig7_curved_target_vs_snr": "P03",  # legend-covers-data 1, small-text 3
-    "report:track_init_ht/sequence_measured_vs_formulas": "P03",  # small-text 4
-    "report:wransac/beyond_generalisation": "P01",  # too-wide 1
-    "report:wransac/beyond_orbit_fit": "P01",  # too-wide 1
 }
