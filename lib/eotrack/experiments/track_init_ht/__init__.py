@@ -69,7 +69,14 @@ from .scenario import (
     paper_settings,
     trial_counts,
 )
-from .sequences import match_tracks, run_sequence, sequence_experiment, snr_sweep, sweep_example
+from .sequences import (
+    curved_pda_predictions,
+    match_tracks,
+    run_sequence,
+    sequence_experiment,
+    snr_sweep,
+    sweep_example,
+)
 from .trials import (
     Fig1Result,
     Fig2Result,
@@ -96,6 +103,7 @@ __all__ = [
     "Fig2Result",
     "SequenceSettings",
     "TrialCounts",
+    "curved_pda_predictions",
     "evaluate_experiment",
     "evaluate_fig1",
     "evaluate_fig2",

@@ -24,7 +24,8 @@ from eotrack.tracking.initiation.temporal import TemporalContinuityInitiator
 
 from .scenario import SequenceSettings
 
-__all__ = ["match_tracks", "run_sequence", "sequence_experiment", "snr_sweep", "sweep_example"]
+__all__ = ["curved_pda_predictions", "match_tracks", "run_sequence", "sequence_experiment",
+           "snr_sweep", "sweep_example"]
 
 
 def match_tracks(tracks: list[Track], frames: list[tuple[float, np.ndarray]],
@@ -311,3 +312,38 @@ def sweep_example(st: SequenceSettings, snr: float, n_runs: int, *,
         if not recovered or run["coverage"][-1] >= 0.5:
             return run
     return first
+
+
+def curved_pda_predictions(ex: dict[str, Any], st: SequenceSettings, *,
+                           n_phase: int = 10) -> dict[str, float]:
+    """Per-frame P_DA of the curved target predicted from measured inputs (notebook, Fig. 7).
+
+    The spot of eq. (1) at the curved target's SNR, sampled at pixel centres, is put at
+    ``n_phase × n_phase`` uniform sub-pixel phases; each core pixel is detected with
+    ``Q(Q⁻¹(P_F) − a g_i)`` at the *measured* ``P_F``. Returns the mean over phases of
+    (i) ``"per-pixel"``: the Poisson-binomial core count plus ``Bin(W_S − T_S, P_F)``
+    (:func:`~eotrack.tracking.hypothesis.area_detection_pixels`), and (ii) ``"with measured
+    background"``: the core count plus the measured count distribution of background windows
+    (``W_S`` pixels, so the noise part is bounded from above).
+    """
+    from scipy.stats import norm
+
+    p_f = float(ex["p_f"])
+    z = norm.isf(p_f)
+    sig = st.sigma_px
+    u = (np.arange(n_phase) + 0.5) / n_phase - 0.5
+    k = np.arange(st.size_px) - st.size_px // 2
+    d_bg = np.sum([r["d_hist"] for r in ex["runs"]], axis=0).astype(float)
+    d_bg /= d_bg.sum()
+    per_pixel, with_bg = [], []
+    for dy in u:
+        for dx in u:
+            g = np.exp(-0.5 * np.add.outer((k - dy) ** 2, (k - dx) ** 2).ravel() / sig ** 2)
+            q = norm.sf(z - st.curved_snr * g)
+            per_pixel.append(float(hyp.area_detection_pixels(q, p_f, st.window, st.s)))
+            pmf = np.array([1.0])
+            for qi in q:
+                pmf = np.convolve(pmf, [1.0 - qi, qi])
+            with_bg.append(float(np.convolve(pmf, d_bg)[st.s:].sum()))
+    return {"per-pixel": float(np.mean(per_pixel)),
+            "with measured background": float(np.mean(with_bg))}
