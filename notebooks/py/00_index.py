@@ -126,7 +126,9 @@ for nb in notebooks[notebooks["number"] != "00"].itertuples():
     stars, focus = LAB.get(nb.number, ("—", "see the notebook's header"))
     _, after, maths = PATH.get(nb.number, ("", "01", "—"))
     t = times.get(nb.stem, {})
-    run = (f"{t['seconds'] / 60:.1f} min ({t.get('executed', '?')})" if "seconds" in t
+    busy = (f", machine load {t['load']:g} on {t['cores']} cores"
+            if t.get("load", 0) > t.get("cores", 1) else "")
+    run = (f"{t['seconds'] / 60:.1f} min ({t.get('executed', '?')}{busy})" if "seconds" in t
            else "not measured yet (`make execute`)")
     slug = slug_of.get(nb.stem) or nb.stem.split("_")[1]
     ex = [i for i in ids_all if i.split(".")[0] == slug]
