@@ -815,7 +815,7 @@ explore = panel(view,  # a change only re-counts the stored distances and redraw
 # | §2.1 | "random false targets" | 3 per map, uniform |
 # | Table 2 | distortion coefficients without units | OpenCV model, normalised coordinates — negligible at 2° |
 # | Tables 3/5 | STK scene, object positions not given | GEO1 from Table 5 (on its map-4 pixel), GEO2–GEO9 from Table 3's map 4 on the GEO shell; Table 3's maps 1–3 cannot be met by any attitude (Table 3 section) |
-# | Tables 3/5 | GEO5 at Z = 844.10 km (Table 5) but at (253, 381) in map 4 (Table 3): incompatible | Table 3 followed; the difference and its effect on Fig. 8 measured (section *Tables 3 and 5 disagree*) |
+# | Tables 3/5 | GEO5's Table 5 position and its Table 3 pixels in map 4 are incompatible (numbers computed in *Tables 3 and 5 disagree*) | Table 3 followed; the difference and its effect on Fig. 8 measured (section *Tables 3 and 5 disagree*) |
 # | Table 4 | row 4(a) prints one value, 1.387, column lost | left unplaced; not compared |
 # | Tables 3/5 | GEO1 in maps 1 and 4 only, but triangulated from pairs 1&2 and 2&4 | Table 3 followed |
 # | Table 5 | GEO1 2&4 X = +39,365.25 | −39,365.25 (the printed mean needs it) |
