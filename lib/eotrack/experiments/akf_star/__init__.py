@@ -48,6 +48,7 @@ from .scenario import (
     EXPLORATORY_CONFIDENCE,
     FIRST_COMMIT_CONFIDENCE,
     N_SEEDS,
+    PROTOCOL_SEED_ENTROPY,
     SCENARIO_LABELS,
     SETTINGS_PROVENANCE,
     SLUG,
@@ -59,6 +60,8 @@ from .scenario import (
     exploratory_config,
     first_commit_config,
     make_filter,
+    protocol_seeds,
+    read_protocol,
     singer_parameters,
 )
 from .trials import (
@@ -86,6 +89,7 @@ __all__ = [
     "FAMILY_ALPHA",
     "FIRST_COMMIT_CONFIDENCE",
     "N_SEEDS",
+    "PROTOCOL_SEED_ENTROPY",
     "SCENARIO_LABELS",
     "SENSITIVITY_SETTINGS",
     "SETTINGS_PROVENANCE",
@@ -124,6 +128,8 @@ __all__ = [
     "plot_sage_husa",
     "plot_ship_attitude",
     "plot_success_curves",
+    "protocol_seeds",
+    "read_protocol",
     "report_text",
     "reproduce",
     "reproduction_extras",
@@ -242,17 +248,16 @@ def reproduce(*, quick: bool = False, runner: TrialRunner | None = None,
     runner
         Trial runner (serial by default).
     seed
-        ``None``: the committed default run. An int: an independent root seed from which every
-        generator of the run is derived (sequences through ``np.random.SeedSequence``, the
-        headline's bootstrap too).
+        ``None``: the committed run, run 0 of the pre-registered confirmatory protocol. An int
+        k: the protocol's run k (``--seeds 5``: k = 1…5), every generator derived from
+        ``np.random.SeedSequence([PROTOCOL_SEED_ENTROPY, k])`` (:func:`protocol_seeds`).
     """
+    k = 0 if seed is None else check_int(seed, "seed", min_value=0)
+    seq_seed, s_boot = protocol_seeds(k)        # the pre-registered protocol's root seeds
     cfg = AblationConfig(n_seeds=4, n_frames=120) if quick else AblationConfig()
-    boot_rng = None
-    if seed is not None:
-        root = np.random.SeedSequence(check_int(seed, "seed", min_value=0))
-        s_seq, s_boot = root.spawn(2)
-        cfg = replace(cfg, seed=int(s_seq.generate_state(1)[0]))
-        boot_rng = np.random.default_rng(s_boot)
+    cfg = replace(cfg, seed=seq_seed)
+    # the committed run bootstraps from default_rng(cfg.seed), as the notebook's claim_results
+    boot_rng = None if seed is None else np.random.default_rng(s_boot)
     claims = load_claims(SLUG)
     ecfg = exploratory_config(cfg)
     res = run_ablation(cfg, runner=runner, extras=reproduction_extras(cfg))

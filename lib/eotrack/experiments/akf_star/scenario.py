@@ -29,6 +29,7 @@ __all__ = [
     "FIRST_COMMIT_CONFIDENCE",
     "NO_GATE_CAP_PX",
     "N_SEEDS",
+    "PROTOCOL_SEED_ENTROPY",
     "SCENARIO_LABELS",
     "SETTINGS_PROVENANCE",
     "SLUG",
@@ -40,6 +41,8 @@ __all__ = [
     "exploratory_config",
     "first_commit_config",
     "make_filter",
+    "protocol_seeds",
+    "read_protocol",
     "singer_parameters",
 ]
 
@@ -52,13 +55,45 @@ TITLE = ("Sheng Y.S., Adaptive anti-occlusion star tracking algorithm for ships 
 #: the notebook's statuses are the REPORT's): 20, the statistics rule's minimum for an ordering
 N_SEEDS = 20
 
+#: entropy of the pre-registered confirmatory run's root seeds (claims.toml ``[protocol]``,
+#: fixed on 2026-12-02 before any run on them): run k draws its sequences and its bootstrap from
+#: ``numpy.random.SeedSequence([PROTOCOL_SEED_ENTROPY, k]).spawn(2)``; k = 0 is the committed
+#: run, k = 1…5 the ``--seeds 5`` stability runs. (The earlier, exploratory readings used root
+#: seed 20260404 and ``SeedSequence(1..5)``.)
+PROTOCOL_SEED_ENTROPY = 20261202
+
+
+def protocol_seeds(k: int = 0) -> tuple[int, np.random.SeedSequence]:
+    """(root seed of the sequences, bootstrap seed sequence) of the protocol's run ``k``."""
+    from eotrack.validation import check_int
+
+    s_seq, s_boot = np.random.SeedSequence(
+        [PROTOCOL_SEED_ENTROPY, check_int(k, "k", min_value=0)]).spawn(2)
+    return int(s_seq.generate_state(1)[0]), s_boot
+
+
+def read_protocol() -> dict:
+    """The ``[protocol]`` table of ``papers_repro/akf_star/claims.toml`` (the pre-registered
+    confirmatory protocol the statuses are decided under)."""
+    import tomllib
+
+    from eotrack.repro import papers_repro_dir
+
+    with (papers_repro_dir() / SLUG / "claims.toml").open("rb") as fh:
+        data = tomllib.load(fh)
+    if "protocol" not in data:
+        raise ValueError("papers_repro/akf_star/claims.toml has no [protocol] table")
+    return dict(data["protocol"])
+
+
 #: an association gate "without cap" (the experiment's first commit, 9ea01e8: the gate grew
 #: with S freely; the 60 px and 30 px caps came 15 and 35 minutes later, 7ea54ea and c084fce)
 NO_GATE_CAP_PX = 1.0e6
 
 #: the confidence-filter settings that decide the statuses: γ = 3, R within [0.01, 25] px²,
-#: q_a within [0.25, 16]× its sea-state prior. They were FIXED ON 2026-12-01 (66bec00) WITH
-#: RESULTS SEEN — no setting of this experiment was fixed before a result was looked at (see
+#: q_a within [0.25, 16]× its sea-state prior — frozen by the pre-registered confirmatory
+#: protocol of 2026-12-02 (claims.toml ``[protocol]``; decided on new root seeds,
+#: :func:`protocol_seeds`). They had been chosen on 2026-12-01 (66bec00) WITH RESULTS SEEN — no setting of this experiment was fixed before a result was looked at (see
 #: :data:`SETTINGS_PROVENANCE`). R and q_a come from ``ConfidenceConfig``'s defaults in 6d355e1
 #: (the WRANSAC commit, before this experiment existed); γ = 3 from the experiment's first
 #: commit 9ea01e8, which itself ran with R ≤ 1 px² and q_a ≤ 100× (:data:`FIRST_COMMIT_CONFIDENCE`)
@@ -139,7 +174,8 @@ class AblationConfig:
         Extraction (the paper's method; no cap, grown regions for the centroid) and
         confidence-filter settings.
     seed
-        Root seed.
+        Root seed of the sequences (default: the pre-registered confirmatory run,
+        ``protocol_seeds(0)``).
     """
 
     n_frames: int = 200
@@ -158,7 +194,7 @@ class AblationConfig:
     flux_tol: float = 0.7
     extraction: ExtractionConfig = field(default_factory=ExtractionConfig)
     confidence: ConfidenceConfig = STATUS_CONFIDENCE
-    seed: int = 20260404
+    seed: int = field(default_factory=lambda: protocol_seeds(0)[0])
 
 
 def exploratory_config(cfg: AblationConfig | None = None) -> AblationConfig:
