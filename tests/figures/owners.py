@@ -7,5 +7,5 @@ OWNERS = {
     "track_init_hough": "P04",
     "akf_star": "P05",
     "ransac_crlb_pose": "P06",
-    "capstone": "FIG",
+    "capstone": "CAP",
 }

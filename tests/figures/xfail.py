@@ -4,7 +4,8 @@ Only figures whose owners have not fixed them yet belong here; an owner who fixe
 deletes its line (the test then runs strictly). Keys: ``report:<slug>/<figure stem>`` for a
 REPORT figure, ``case:<slug>.<function>`` for a figure function drawn by a lint case,
 ``nocase:<slug>.<function>`` for a public figure function that no REPORT figure and no case
-draws yet.
+draws yet, ``notebook:<notebook stem>`` for a notebook whose stored figures fail (or were stored
+before the kernel recorded the lint's verdict: re-execute it).
 """
 
 # measured by the lint on 2026-12-01 21:25 (comment: the rules each figure still fails)
@@ -23,6 +24,14 @@ XFAIL: dict[str, str] = {
     "nocase:akf_star.plot_success_curves": "P05",  # no lint case yet
     "nocase:ransac_crlb_pose.plot_error_ecdf": "P06",  # no lint case yet
     "nocase:track_init_hough.plot_scene_tracks": "P04",  # no lint case yet
+    # notebooks: stored before the kernel recorded the lint's verdict (2026-12-02 00:00)
+    "notebook:01_wransac_trajectory_prediction": "P01",  # not-linted 12
+    "notebook:02_epipolar_association": "P02",  # not-linted
+    "notebook:03_track_init_hypothesis_testing": "P03",  # not-linted
+    "notebook:04_track_init_logic_hough": "P04",  # not-linted
+    "notebook:05_akf_star_tracking": "P05",  # not-linted
+    "notebook:06_ransac_crlb_pose": "P06",  # not-linted
+    "notebook:07_capstone_geo_surveillance": "CAP",  # not-linted 6
     "report:akf_star/fig6_mean_tracking_error": "P05",  # small-text 51, too-wide 1
     "report:akf_star/fig7_success_rate": "P05",  # small-text 52, too-wide 1
     "report:track_init_hough/angle_constraint": "P04",  # log-labels 2, small-text 4, title 1

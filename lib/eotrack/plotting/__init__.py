@@ -43,67 +43,17 @@ from __future__ import annotations
 
 from typing import Any
 
-from .helpers import (
-    describe_figure,
-    get_ax,
-    label_axes,
-    legend_outside,
-    log_axis,
-    paper_marker,
-    paper_values,
-    plain_number,
-    register_figure_descriptions,
-    savefig,
-)
-from .lint import FigureProblem, effective_font_scale, lint_figure
-from .style import (
-    BOOK_COLUMN_PX,
-    BOOK_WIDTH_IN,
-    FIG_HEIGHT_IN,
-    FIG_WIDTH_IN,
-    HOUSE_RC,
-    MIN_FONT_PT,
-    OKABE_ITO,
-    ON_IMAGE,
-    MethodStyle,
-    house_style,
-    known_methods,
-    method_style,
-    series_styles,
-    use_house_style,
-)
+from . import helpers as _helpers
+from . import lint as _lint
+from . import style as _style_module
+from .helpers import *  # noqa: F403  (the names are each submodule's __all__)
+from .helpers import register_figure_descriptions
+from .lint import *  # noqa: F403
+from .style import *  # noqa: F403
+from .style import HOUSE_RC, use_house_style
 
-__all__ = [
-    "BOOK_COLUMN_PX",
-    "BOOK_WIDTH_IN",
-    "FIG_HEIGHT_IN",
-    "FIG_WIDTH_IN",
-    "HOUSE_RC",
-    "MIN_FONT_PT",
-    "OKABE_ITO",
-    "ON_IMAGE",
-    "STYLE",
-    "FigureProblem",
-    "MethodStyle",
-    "describe_figure",
-    "effective_font_scale",
-    "get_ax",
-    "house_style",
-    "known_methods",
-    "label_axes",
-    "legend_outside",
-    "lint_figure",
-    "log_axis",
-    "method_style",
-    "paper_marker",
-    "paper_values",
-    "plain_number",
-    "register_figure_descriptions",
-    "savefig",
-    "series_styles",
-    "style",
-    "use_house_style",
-]
+#: The package's names: each submodule's ``__all__`` (listed once, there) and the two old names.
+__all__ = sorted({*_helpers.__all__, *_lint.__all__, *_style_module.__all__, "STYLE", "style"})
 
 #: The house rc settings (the name used before :data:`HOUSE_RC`; the same dict).
 STYLE: dict[str, Any] = HOUSE_RC

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import importlib
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
@@ -13,7 +14,9 @@ from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
 from .style import method_style
 
 __all__ = [
+    "LINT_MIMETYPE",
     "describe_figure",
+    "figure_lint_record",
     "get_ax",
     "label_axes",
     "legend_outside",
@@ -292,11 +295,32 @@ def describe_figure(fig: Any) -> str:
     return f"Figure: {text}" if text else "Figure"
 
 
+#: The output type under which a notebook stores the figure lint's verdict on each figure it
+#: shows (``{"problems": [[rule, message], ...]}``); ``tests/figures`` reads it from the stored
+#: notebooks. Viewers that do not know it (JupyterLab, the book) show the PNG as before.
+LINT_MIMETYPE = "application/vnd.eotrack.figure-lint+json"
+
+
+def figure_lint_record(fig: Any) -> dict:
+    """The lint's verdict on ``fig`` as stored with a notebook's figure output:
+    ``{"problems": [[rule, message], ...]}`` (empty list: the figure passes); a lint that
+    itself fails is recorded as the problem ``"lint-error"``."""
+    from .lint import lint_figure
+
+    try:
+        problems = [[p.rule, p.message] for p in lint_figure(fig)]
+    except Exception as exc:  # the record must not break the notebook's output
+        problems = [["lint-error", f"{type(exc).__name__}: {exc}"]]
+    return {"problems": problems}
+
+
 def register_figure_descriptions() -> bool:
     """In an IPython kernel, make a figure's plain-text output its :func:`describe_figure`
     (instead of ``<Figure size 640x480 with 1 Axes>``), so a stored notebook carries each
-    figure's titles and the book uses them as the image's alt text. Returns whether a kernel
-    was found (outside IPython nothing happens)."""
+    figure's titles and the book uses them as the image's alt text; and store with every
+    figure shown the figure lint's verdict (:func:`figure_lint_record`, output type
+    :data:`LINT_MIMETYPE`), so the lint checks the notebooks' own figures as stored. Returns
+    whether a kernel was found (outside IPython nothing happens)."""
     try:
         from IPython import get_ipython
     except ImportError:
@@ -304,8 +328,22 @@ def register_figure_descriptions() -> bool:
     ip = get_ipython()
     if ip is None:
         return False
+    import matplotlib
+    from IPython.core.formatters import JSONFormatter
     from matplotlib.figure import Figure
+
+    # load the backend first: loading the inline backend removes every formatter of Figure
+    # (matplotlib_inline's select_figure_formats), so ours are registered after it
+    backend = matplotlib.get_backend()
+    if backend.startswith("module://"):
+        importlib.import_module(backend.removeprefix("module://"))
 
     ip.display_formatter.formatters["text/plain"].for_type(
         Figure, lambda fig, p, cycle: p.text(describe_figure(fig)))
+    formatters = ip.display_formatter.formatters
+    if LINT_MIMETYPE not in formatters:
+        lint_fmt = JSONFormatter(parent=ip.display_formatter)
+        lint_fmt.format_type = LINT_MIMETYPE
+        formatters[LINT_MIMETYPE] = lint_fmt
+    formatters[LINT_MIMETYPE].for_type(Figure, figure_lint_record)
     return True
