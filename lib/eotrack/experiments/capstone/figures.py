@@ -11,8 +11,6 @@ import pandas as pd
 from matplotlib.figure import Figure
 from matplotlib.patches import FancyArrowPatch, FancyBboxPatch
 
-from eotrack.geometry import project_directions
-from eotrack.imaging import BackgroundConfig, SkyConfig, extract_stars
 from eotrack.plotting import (
     ON_IMAGE,
     label_axes,
@@ -27,7 +25,6 @@ from .pipeline import (
     NightResult,
     _stars_for_burst,
     render_frame,
-    separate_targets,
 )
 from .scenario import NightPlan, camera_matrix
 
@@ -128,31 +125,54 @@ def plot_night(plan: NightPlan, *, axes=None):
 
 
 def frame_example(plan: NightPlan, index: int, seed: int = 0) -> dict:
-    """Render and analyse the first frames of burst ``index`` (for figures).
+    """Render and analyse the first two frames of burst ``index`` (for figures), through the
+    chain's own per-frame call (:func:`eotrack.pipeline.measure_frame`).
 
-    Returns a dict with the first frame ``image``, its detections ``xy``, masks ``catalogue`` and
-    ``candidate``, the catalogue stars' predicted ``star_xy`` and the true ``target_xy``.
+    Returns a dict with the first frame ``image``, its detections ``xy``, masks ``catalogue``
+    (matched by the plate solution) and ``candidate``, the catalogue stars where the BELIEVED
+    pointing puts them (``star_xy_believed``) and where the plate solution puts them
+    (``star_xy``), the true object positions ``target_xy`` ``(n_objs, 2)``, the star drift per
+    frame and the plate ``solution``.
     """
+    from eotrack.astro.astrometry import catalog_in_field, wcs_from_camera
+    from eotrack.pipeline import Frame, measure_frame, separate_targets
+
+    from .pipeline import MATCH_PX, burst_catalogue, frame_id, pipeline_config, velocity_gate
+
     cfg = plan.config
-    b = plan.bursts[index]
+    if not 0 <= int(index) < len(plan.bursts):
+        raise ValueError(f"index must lie in [0, {len(plan.bursts)}), got {index}")
+    b = plan.bursts[int(index)]
     rng = np.random.default_rng(seed)
     K = camera_matrix(cfg)
-    dirs, mag, cat = _stars_for_burst(rng, plan, b)
-    sky = SkyConfig(psf_sigma=cfg.psf_sigma_px, thresh=cfg.detect_sigma,
-                    background=BackgroundConfig(mesh=32, filter_size=1))
-    imgs, det, sxy = [], [], []
+    n = cfg.size_px
+    dirs, mag, cat_f = _stars_for_burst(rng, plan, b)
+    catalog = burst_catalogue(plan, b, dirs, mag, cat_f)
+    pcfg = pipeline_config(cfg, velocity_gate(cfg))
+    from astropy import units as u
+
+    imgs, meas = [], []
     for k in range(2):
         imgs.append(render_frame(rng, plan, b, k, dirs, mag))
-        det.append(np.asarray(extract_stars(imgs[-1], config=sky).xy).reshape(-1, 2))
-        sxy.append(project_directions(dirs[cat], K, b.R[k]))
-    c = np.array([[(cfg.size_px - 1) / 2] * 2])
-    from eotrack.geometry import pixel_rays
-
-    ray = pixel_rays(c, K, b.R[0])
-    drift = project_directions(ray, K, b.R[1]) - c
-    is_cat, is_cand = separate_targets(det, sxy, drift, cfg.size_px)
-    return {"image": imgs[0], "xy": det[0], "catalogue": is_cat[0], "candidate": is_cand[0],
-            "star_xy": sxy[0], "target_xy": b.target_xy[0], "drift": drift[0], "burst": b}
+        fr = Frame(image=imgs[-1], time=plan.t0 + float(b.times_s[k]) * u.s,
+                   exposure_s=cfg.exposure_s, station=cfg.stations[b.station].name,
+                   wcs_guess=wcs_from_camera(K, b.R_believed[k], (n, n)),
+                   frame_id=frame_id(plan, b, k), sequence=f"v{b.visit}")
+        meas.append(measure_frame(fr, catalog, config=pcfg))
+    cand = separate_targets(meas, radius_px=MATCH_PX)
+    m0 = meas[0]
+    guess = wcs_from_camera(K, b.R_believed[0], (n, n))
+    cat = catalog_in_field(guess, (n, n), max_mag=cfg.astrometry_mag, margin_px=20.0,
+                           catalog=catalog)
+    sb = np.column_stack(guess.wcs_world2pix(cat.ra_deg, cat.dec_deg, 0))
+    ss = m0.solution.radec_to_pixel(cat.ra_deg, cat.dec_deg)
+    c = np.array([[(n - 1) / 2] * 2])
+    ra_c, de_c = m0.solution.pixel_to_radec(c)
+    drift = meas[1].solution.radec_to_pixel(ra_c, de_c)[0] - c[0]
+    return {"image": imgs[0], "xy": m0.xy, "catalogue": m0.is_catalogue, "candidate": cand[0],
+            "star_xy": ss, "star_xy_believed": sb, "target_xy": b.target_xy[:, 0],
+            "drift": drift, "burst": b, "solution": m0.solution,
+            "names": [plan.names[o] for o in b.objs]}
 
 
 def plot_frame(example: dict, *, ax: plt.Axes | None = None) -> plt.Axes:
@@ -164,14 +184,18 @@ def plot_frame(example: dict, *, ax: plt.Axes | None = None) -> plt.Axes:
     xy, cat, cand = example["xy"], example["catalogue"], example["candidate"]
     mov = ~cat & ~cand
     ax.scatter(*xy[cat].T, s=28, facecolors="none", edgecolors=ON_IMAGE["star"], lw=0.7,
-               marker="o", label=f"catalogue star, Gaia ({int(cat.sum())})")
+               marker="o", label=f"matched to Gaia by the plate solution ({int(cat.sum())})")
     ax.scatter(*xy[mov].T, s=10, color=ON_IMAGE["candidate"], lw=0, marker="o", alpha=0.6,
-               label=f"star by its sidereal drift, or untestable ({int(mov.sum())})")
+               label=f"star: fixed on the sky in a neighbouring frame ({int(mov.sum())})")
     ax.scatter(*xy[cand].T, s=160, marker="s", facecolors="none",
                edgecolors=ON_IMAGE["target"], lw=1.8, label=f"target candidate ({int(cand.sum())})")
-    t = example["target_xy"]
-    ax.plot(*t, "+", color=ON_IMAGE["truth"], ms=18, mew=1.6, ls="none",
-            label="true target (SGP4)")
+    sb = example.get("star_xy_believed")
+    if sb is not None and len(sb):
+        ax.scatter(*sb.T, s=22, marker="x", color=ON_IMAGE["star"], lw=0.9, alpha=0.8,
+                   label="catalogue star where the believed pointing puts it")
+    t = np.atleast_2d(example["target_xy"])
+    ax.plot(*t.T, "+", color=ON_IMAGE["truth"], ms=18, mew=1.6, ls="none",
+            label=f"true objects (SGP4, {len(t)})")
     d = example["drift"]
     ax.annotate("", xy=(30 + d[0], 30 + d[1]), xytext=(30, 30),
                 arrowprops={"arrowstyle": "-|>", "color": ON_IMAGE["target"], "lw": 1.5})
@@ -181,8 +205,9 @@ def plot_frame(example: dict, *, ax: plt.Axes | None = None) -> plt.Axes:
     b = example.get("burst")
     label_axes(ax, x="x", xunit="px", y="y", yunit="px",
                title="First frame of a burst and what the chain makes of its detections"
-               + (f"\n(station {b.station + 1}, object {b.obj + 1}, visit {b.visit + 1})"
-                  if b is not None else ""))
+               + (f"\n(station {b.station + 1}, field of object {b.obj + 1}, visit "
+                  f"{b.visit + 1}; plate solution RMS {example['solution'].rms_arcsec:.2f}″)"
+                  if b is not None and "solution" in example else ""))
     # a dark legend box: the image's overlay colours are made to show on black
     legend_outside(ax, where="below", ncol=1, facecolor="0.12", labelcolor="white")
     return ax

@@ -1,7 +1,12 @@
-"""The chain: frames → extraction → star/target separation → initiation → association →
-triangulation → prediction through the eclipse, and its error budget.
+"""The chain: frames → extraction → astrometry → star/target separation → initiation →
+association → triangulation → orbit and prediction through the eclipse, and its error budget.
 
-Each burst (one station, one object, one visit) is one seeded *trial* of
+The frames are rendered with the TRUE camera attitude; everything after rendering sees only the
+mount's BELIEVED pointing and solves each frame's plate from its stars
+(:func:`eotrack.pipeline.measure_frame`: extraction, then
+:func:`eotrack.astro.astrometry.solve_plate`). The true attitude is used again only to score.
+
+Each burst (one station, one field, one visit) is one seeded *trial* of
 :class:`eotrack.montecarlo.TrialRunner`: the same code runs serially, on local processes or on a
 Dask cluster, with bit-identical results (trial ``i`` always gets the same generator).
 """
@@ -14,6 +19,8 @@ from functools import lru_cache
 
 import numpy as np
 import pandas as pd
+from astropy import units as u
+from scipy.stats import chi2, norm
 
 from eotrack.geometry import (
     associate,
@@ -26,7 +33,6 @@ from eotrack.geometry import (
 from eotrack.imaging import (
     BackgroundConfig,
     SkyConfig,
-    extract_stars,
     render_gaussian_spots,
     star_count_slope,
     synthetic_faint_stars,
@@ -49,25 +55,42 @@ __all__ = [
     "BurstResult",
     "NightResult",
     "associate_tracklets",
+    "burst_catalogue",
     "burst_index",
     "eclipse_check",
+    "eclipse_status",
+    "epipolar_gate_px",
     "error_budget",
+    "expected_completeness",
+    "expected_rates",
+    "expected_ray_sigma_px",
+    "expected_recall",
+    "frame_id",
     "noise_sweep",
     "observe_burst",
+    "pipeline_config",
     "predict_through_eclipse",
+    "predicted_false_association",
+    "quick_config",
     "range_error_km",
     "render_frame",
     "run_night",
-    "separate_targets",
+    "scorecard",
     "sidereal_drift_px",
+    "sigma_reconciliation",
+    "sky_config",
     "target_peak_snr",
     "triangulate_pairs",
+    "velocity_gate",
 ]
 
 #: The robust predictors of notebook 01 compared through the eclipse.
 PREDICTORS = ("lsq", "ransac", "wransac")
 MATCH_PX = 2.5      # catalogue / sidereal-partner match radius (px)
-TRUTH_PX = 2.0      # a detection within this of the true target is the target
+TRUTH_PX = 2.0      # a detection within this of a true object is that object (scoring only)
+CORRELATE_PX = 6.0  # a tracklet within this of an object's TLE prediction is that object
+GATE_ALPHA = 0.01   # the epipolar gate: a true pair falls outside it with probability α
+RATE_MARGIN = 1.5   # velocity gate = margin × the fastest expected rate (and ≥ 2 px per burst)
 
 
 def burst_index(rng: np.random.Generator) -> int:
@@ -82,27 +105,52 @@ def burst_index(rng: np.random.Generator) -> int:
     return int(key[-1])
 
 
+def frame_id(plan: NightPlan, b, k: int) -> str:
+    """A frame's name: station, visit, field and frame, e.g. ``Socorro-v012-28626-k3``."""
+    st = plan.config.stations[b.station].name.split()[0]
+    return f"{st}-v{b.visit:03d}-{plan.names[b.obj]}-k{k}"
+
+
 @dataclass
 class BurstResult:
     """What one burst produced (and its truth bookkeeping).
 
     Attributes
     ----------
-    station, obj, visit
-        Burst identity.
+    station, obj, visit, objs
+        Burst identity (``obj`` the field object, ``objs`` every object in the field).
     n_detections, n_catalogue, n_candidates, n_false_candidates
-        Per-frame counts: detections, detections matched to catalogue stars, target candidates
-        left after separation, candidates that are not the target.
+        Per-frame counts: detections, detections matched to catalogue stars by the plate
+        solution, target candidates left after separation, candidates that are no object.
     target_lit, target_detected, target_kept
-        Per frame: target sunlit in the field; detected by the extractor; kept as candidate.
+        ``(n_objs, n_frames)``: object sunlit in the field; detected by the extractor; kept as
+        a candidate.
+    solved
+        Per frame: the plate solution succeeded.
+    plate_rms_arcsec, plate_n_matched
+        Per frame: RMS residual of the matched stars and their number (NaN / 0 if unsolved).
+    plate_err_arcsec
+        Per frame: TRUE error of the solved WCS at the field objects' true pixels (mean over
+        the objects; scoring only).
+    cams
+        Per solved frame ``k``: ``(K, R)`` of the plate solution (:func:`camera_from_wcs`).
+    failures
+        ``(frame, stage, reason)`` of every frame left out or object pair flagged.
+    gospa
+        Initiation GOSPA of the burst (:func:`eotrack.tracking.metrics.initiation_metrics`).
+    v_max_px_s
+        The velocity gate used (px/s).
     tracks
-        One dict per confirmed track: ``frames`` (indices), ``xy`` ``(k, 2)``, ``dirs``
-        (unit GCRS directions ``(k, 3)``), ``true`` (the target's track).
+        One dict per confirmed track: ``frames`` (indices), ``xy`` ``(k, 2)``, ``dirs`` (unit
+        GCRS directions from the plate solution ``(k, 3)``), ``true_obj`` (object index or −1,
+        scoring), ``cat_obj`` (the object whose TLE prediction it correlates with, or −1),
+        ``ray_err_arcsec`` (true angle error per hit, scoring).
     """
 
     station: int
     obj: int
     visit: int
+    objs: tuple
     n_detections: np.ndarray
     n_catalogue: np.ndarray
     n_candidates: np.ndarray
@@ -110,32 +158,48 @@ class BurstResult:
     target_lit: np.ndarray
     target_detected: np.ndarray
     target_kept: np.ndarray
+    solved: np.ndarray
+    plate_rms_arcsec: np.ndarray
+    plate_n_matched: np.ndarray
+    plate_err_arcsec: np.ndarray
+    cams: dict = field(default_factory=dict)
+    failures: list = field(default_factory=list)
+    gospa: dict = field(default_factory=dict)
+    v_max_px_s: float = np.nan
     tracks: list = field(default_factory=list)
 
 
 @lru_cache(maxsize=8)
 def _catalogue_band(dec_deg: int, max_mag: float, jyear: float):
-    """Catalogue stars brighter than ``max_mag`` within 10° of declination ``dec_deg``."""
+    """Catalogue stars brighter than ``max_mag`` within 10° of declination ``dec_deg`` (at
+    epoch ``jyear``), as a :class:`~eotrack.astro.StarCatalog`."""
     from eotrack.astro import load_catalog
 
     cat = load_catalog()
     cat = cat.select(slice(0, int(np.searchsorted(cat.mag, float(max_mag), side="right"))))
     cat = cat.select(np.abs(cat.dec_deg - dec_deg) < 10.0).at_epoch(jyear)
-    return cat.unit_vectors(), cat.mag
+    return cat, cat.unit_vectors()
+
+
+def _band_for(plan: NightPlan, boresight: np.ndarray):
+    """The catalogue band around ``boresight`` and its unit vectors (cached)."""
+    dec0 = round(np.degrees(np.arcsin(np.clip(boresight[2], -1, 1))))
+    return _catalogue_band(dec0, plan.config.catalogue_mag, round(float(plan.t0.jyear), 2))
 
 
 def _stars_for_burst(rng, plan: NightPlan, b) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Unit directions, magnitudes and catalogue flags of the stars around the burst's field.
+    """RENDERING: unit directions, magnitudes and catalogue flags of the stars around the
+    burst's true field.
 
-    Catalogue stars (G ≤ ``catalogue_mag``) within 1.6 fields of the boresight, plus synthetic
-    fainter stars following the catalogue's own count slope (uncatalogued: only their motion
-    marks them as stars).
+    Catalogue stars (G ≤ ``catalogue_mag``) within 1.6 fields of the true boresight, plus
+    synthetic fainter stars following the catalogue's own count slope (uncatalogued: only their
+    motion marks them as stars).
     """
     cfg = plan.config
     bore = b.R[0][2]
-    dec0 = round(np.degrees(np.arcsin(bore[2])))
-    u, m = _catalogue_band(dec0, cfg.catalogue_mag, round(float(plan.t0.jyear), 2))
-    cosang = u @ bore
+    cat_b, u_ = _band_for(plan, bore)
+    m = cat_b.mag
+    cosang = u_ @ bore
     radius = cfg.fov_deg * 1.6
     near = cosang >= np.cos(np.radians(radius))
     wide = cosang >= np.cos(np.radians(8.0))
@@ -149,22 +213,48 @@ def _stars_for_burst(rng, plan: NightPlan, b) -> tuple[np.ndarray, np.ndarray, n
     xy_f, mag_f = synthetic_faint_stars(rng, a, slope, cfg.catalogue_mag, cfg.star_limit_mag,
                                         (n_pix, n_pix), area_fraction=img_sr / cone_sr)
     dirs_f = pixel_rays(xy_f, Kw, b.R[0]) if len(xy_f) else np.zeros((0, 3))
-    dirs = np.concatenate([u[near], dirs_f])
+    dirs = np.concatenate([u_[near], dirs_f])
     mag = np.concatenate([m[near], mag_f])
-    cat = np.concatenate([np.ones(near.sum(), bool), np.zeros(len(mag_f), bool)])
+    cat = np.concatenate([np.ones(near.sum(), bool), mag_f <= cfg.astrometry_mag])
     return dirs, mag, cat
+
+
+def burst_catalogue(plan: NightPlan, b, dirs: np.ndarray, mag: np.ndarray, cat: np.ndarray):
+    """The chain's catalogue for a burst: the real Gaia band around the BELIEVED boresight plus
+    the synthetic stars brighter than ``astrometry_mag`` (standing in for the deeper Gaia DR3;
+    see :class:`CapstoneConfig`), brightest first, as a :class:`~eotrack.astro.StarCatalog`."""
+    from eotrack.astro.catalog import StarCatalog
+
+    bore = b.R_believed[0][2]
+    band, u_ = _band_for(plan, bore)
+    # the believed field and more (2 fields: pointing errors of many arcminutes stay inside)
+    band = band.select(u_ @ bore >= np.cos(np.radians(2.0 * plan.config.fov_deg)))
+    n_real = int(np.sum(cat)) - int(np.sum(cat & (mag > plan.config.catalogue_mag)))
+    syn = cat.copy()
+    syn[:n_real] = False
+    d = dirs[syn]
+    ra = np.degrees(np.arctan2(d[:, 1], d[:, 0])) % 360.0
+    dec = np.degrees(np.arcsin(np.clip(d[:, 2], -1, 1)))
+    z = np.zeros(len(d))
+    allc = StarCatalog(np.r_[band.source_id, np.full(len(d), -1, band.source_id.dtype)],
+                       np.r_[band.ra_deg, ra], np.r_[band.dec_deg, dec], np.r_[band.mag, mag[syn]],
+                       np.r_[band.pmra_mas_yr, z], np.r_[band.pmdec_mas_yr, z])
+    return allc.select(np.argsort(allc.mag, kind="stable"))
 
 
 def render_frame(rng, plan: NightPlan, b, k: int, dirs: np.ndarray, mag: np.ndarray
                  ) -> np.ndarray:
-    """One frame (e⁻): trailed stars, the target, sky with a gradient, Poisson + read noise."""
+    """RENDERING (true attitude): one frame (e⁻) — trailed stars, every field object, sky with
+    a gradient, Poisson + read noise; a clouded frame (``config.cloud_frames``) passes only
+    ``config.cloud_transmission`` of the light of stars and objects."""
     cfg = plan.config
     K = camera_matrix(cfg)
     n = cfg.size_px
+    trans = cfg.cloud_transmission if (b.station, b.obj, b.visit, k) in cfg.cloud_frames else 1.0
     mid = project_directions(dirs, K, b.R[k])
     end = project_directions(dirs, K, b.R_end[k])
     start = 2 * mid - end
-    flux = 10 ** (-0.4 * (mag - cfg.zero_point_mag))
+    flux = 10 ** (-0.4 * (mag - cfg.zero_point_mag)) * trans
     sub = 3  # trail sampled at 3 sub-exposures
     w = np.linspace(0, 1, sub)
     pts = (start[None] + w[:, None, None] * (end - start)[None]).reshape(-1, 2)
@@ -173,296 +263,699 @@ def render_frame(rng, plan: NightPlan, b, k: int, dirs: np.ndarray, mag: np.ndar
     yy, xx = np.mgrid[0:n, 0:n]
     img = cfg.sky_e * (1.0 + cfg.gradient * (xx + 0.5 * yy) / n)
     render_gaussian_spots((n, n), pts[ok], fl[ok], cfg.psf_sigma_px, out=img)
-    if b.target_flux[k] > 0:
-        render_gaussian_spots((n, n), b.target_xy[k][None], b.target_flux[k], cfg.psf_sigma_px,
-                              out=img)
+    lit = b.target_flux[:, k] > 0
+    if lit.any():
+        render_gaussian_spots((n, n), b.target_xy[lit, k], b.target_flux[lit, k] * trans,
+                              cfg.psf_sigma_px, out=img)
     img = rng.poisson(img).astype(float)
     img += rng.normal(0.0, cfg.read_noise_e, img.shape)
     return img
 
 
-def separate_targets(det: list[np.ndarray], star_xy: list[np.ndarray], drift: np.ndarray,
-                     size: int, radius: float = MATCH_PX
-                     ) -> tuple[list[np.ndarray], list[np.ndarray]]:
-    """Split detections into stars and target candidates.
+def sky_config(config: CapstoneConfig) -> SkyConfig:
+    """The extractor's settings (notebook 05's sky extractor, 32-px background meshes)."""
+    return SkyConfig(psf_sigma=config.psf_sigma_px, thresh=config.detect_sigma,
+                     background=BackgroundConfig(mesh=32, filter_size=1))
 
-    A detection is a star if it lies within ``radius`` of a catalogue star's predicted position,
-    or if a detection of the previous (next) frame lies within ``radius`` of it shifted back
-    (forward) by the sidereal drift ``drift[k]`` (px per frame step, ``(n-1, 2)``). A detection
-    whose shifted positions fall off the frame in both neighbours cannot be tested (a star
-    entering or leaving the field) and is not a candidate either.
 
-    Parameters
-    ----------
-    det
-        Detections ``(m_k, 2)`` per frame.
-    star_xy
-        Predicted positions of the catalogue stars per frame.
-    drift
-        Sidereal drift per frame step ``(n-1, 2)`` (px).
-    size
-        Frame side (px).
-    radius
-        Match radius (px).
+def pipeline_config(config: CapstoneConfig, v_max_px_s: float):
+    """The :class:`eotrack.pipeline.PipelineConfig` of the night's cameras."""
+    from eotrack.pipeline import PipelineConfig
 
-    Returns
-    -------
-    is_catalogue, is_candidate
-        Boolean masks per frame.
+    return PipelineConfig(sky=sky_config(config), catalog_mag=config.astrometry_mag,
+                          star_radius_px=MATCH_PX,
+                          max_rate_arcsec_s=v_max_px_s * config.pixel_scale_arcsec)
+
+
+# ------------------------------------------------------------------ velocity gate
+@lru_cache(maxsize=16)
+def _rates_cached(cfg: CapstoneConfig) -> tuple[np.ndarray, np.ndarray]:
+    plan = make_plan(cfg)
+    t = plan.grid_s
+    rates = np.zeros((len(cfg.stations), len(plan.names)))
+    for s in range(len(cfg.stations)):
+        for o in range(len(plan.names)):
+            d = plan.truth_direction(o, s, t)
+            # into the Earth-fixed (staring mount) frame: undo the Earth's rotation about z
+            a = -EARTH_RATE_RAD_S * t
+            c, s_ = np.cos(a), np.sin(a)
+            e = np.stack([c * d[:, 0] - s_ * d[:, 1], s_ * d[:, 0] + c * d[:, 1], d[:, 2]], 1)
+            vis = plan.elevation_deg[s, o] > cfg.min_elevation_deg
+            step = np.degrees(np.arccos(np.clip(np.sum(e[1:] * e[:-1], 1), -1, 1))) * 3600
+            r = step / np.diff(t)
+            vis_g = np.interp(t[:-1], plan.visit_s, vis.astype(float)) > 0.5
+            rates[s, o] = r[vis_g].max() if vis_g.any() else r.max()
+    return rates, plan.elevation_deg
+
+
+def expected_rates(config: CapstoneConfig | None = None) -> pd.DataFrame:
+    """Each object's fastest apparent motion (″/s) in the GEO-staring (Earth-fixed) mount frame,
+    from its TLE prediction, while it is above the elevation limit.
+
+    A station-kept GEO object barely moves in that frame; an inclined one swings north–south
+    at up to ≈ i·ω⊕ (about 3″/s at 11.4°). The velocity gate (:func:`velocity_gate`) is
+    derived from these rates and the pixel scale — not from a fixed px/s.
     """
-    from scipy.spatial import cKDTree
-
-    n = len(det)
-    dr = np.asarray(drift, float).reshape(-1, 2)
-    if len(dr) != n - 1 or len(star_xy) != n:
-        raise ValueError(f"drift must have {n - 1} rows and star_xy {n} frames, got {len(dr)} "
-                         f"and {len(star_xy)}")
-    is_cat, is_cand = [], []
-    trees = [cKDTree(d) if len(d) else None for d in det]
-
-    def inside(p):
-        return np.all((p > 1.0) & (p < size - 2.0), axis=1)
-
-    for k in range(n):
-        d = np.asarray(det[k], float).reshape(-1, 2)
-        cat = np.zeros(len(d), bool)
-        mov = np.zeros(len(d), bool)
-        testable = np.zeros(len(d), bool)
-        if len(d) and len(star_xy[k]):
-            dist, _ = cKDTree(star_xy[k]).query(d)
-            cat = dist < radius
-        for j, sign in ((k - 1, -1.0), (k + 1, 1.0)):
-            if not 0 <= j < n or not len(d):
-                continue
-            p = d + sign * dr[min(k, j)]
-            ok = inside(p)
-            testable |= ok
-            if trees[j] is not None:
-                dist, _ = trees[j].query(p)
-                mov |= ok & (dist < radius)
-        is_cat.append(cat)
-        is_cand.append(~(cat | mov) & testable)
-    return is_cat, is_cand
+    cfg = _config(config)
+    rates, _ = _rates_cached(cfg)
+    return pd.DataFrame(rates, index=[s.name for s in cfg.stations],
+                        columns=list(cfg.object_names))
 
 
-def _initiator(cfg: CapstoneConfig) -> ModifiedHoughInitiator:
-    # GEO targets: 0 … 0.5 px/s in a GEO-staring frame at 15″/px (inclined drifters ≈ 0.2 px/s).
-    # Their angular acceleration over a burst of seconds is far below a pixel, so the
-    # constant-acceleration search is off (accel_px_s2=0): its widened disc grows with the square
-    # of the burst's span and would only admit chance tracks (and cost ~1 s per frame here).
-    return ModifiedHoughInitiator(d_rho=3.0, d_theta_deg=10.0, d_v=0.05, v_min=0.0, v_max=0.5,
-                                  m=min(cfg.burst_frames, 4), handoff_gate_px=3.0, sigma_px=0.3,
-                                  accel_px_s2=0.0)
+def velocity_gate(config: CapstoneConfig | None = None) -> float:
+    """The initiator's largest velocity (px/s): ``RATE_MARGIN`` × the fastest expected rate
+    (:func:`expected_rates`) over the pixel scale, and at least 2 px over a burst (so that the
+    centroid scatter of a still object stays inside the gate)."""
+    cfg = _config(config)
+    r = float(expected_rates(cfg).to_numpy().max())
+    span = (cfg.burst_frames - 1) * cfg.frame_interval_s
+    return max(RATE_MARGIN * r / cfg.pixel_scale_arcsec, 2.0 / span)
 
 
+def _initiator(cfg: CapstoneConfig, v_max: float) -> ModifiedHoughInitiator:
+    # Velocity gate 0 … v_max (px/s) from the objects' expected rates and the pixel scale
+    # (velocity_gate); the Hough velocity cell d_v = v_max / 10. The objects' angular
+    # acceleration over a burst of seconds is far below a pixel, so the constant-acceleration
+    # search is off (accel_px_s2=0): its widened disc grows with the square of the burst's span
+    # and would only admit chance tracks (and cost ~1 s per frame here).
+    return ModifiedHoughInitiator(d_rho=3.0, d_theta_deg=10.0, d_v=v_max / 10.0, v_min=0.0,
+                                  v_max=v_max, m=min(cfg.burst_frames, 4), handoff_gate_px=3.0,
+                                  sigma_px=0.3, accel_px_s2=0.0)
+
+
+# ------------------------------------------------------------------ one burst
 def observe_burst(rng: np.random.Generator, plan: NightPlan) -> BurstResult:
-    """Trial function: render, extract, separate and initiate one burst of ``plan``.
+    """Trial function: render, then extract, solve the plate, separate and initiate one burst
+    of ``plan`` (the burst is ``plan.bursts[burst_index(rng)]``).
 
-    The burst is ``plan.bursts[burst_index(rng)]``.
+    Only rendering and scoring read the true attitude ``b.R``; the chain gets the believed
+    pointing ``b.R_believed`` as each frame's initial WCS. A frame whose extraction or plate
+    solution fails is left out (its ``(frame, stage, reason)`` in ``failures``) and the burst
+    goes on with the others.
     """
+    from eotrack.astro.astrometry import PlateSolveError, camera_from_wcs, wcs_from_camera
+    from eotrack.pipeline import Frame, initiate_tracks, measure_frame, separate_targets
+    from eotrack.tracking.metrics import initiation_metrics
+
     b = plan.bursts[burst_index(rng)]
     cfg = plan.config
     K = camera_matrix(cfg)
     n = cfg.size_px
+    nf = cfg.burst_frames
+    n_o = len(b.objs)
+    v_max = velocity_gate(cfg)
+    pcfg = pipeline_config(cfg, v_max)
     dirs, mag, cat = _stars_for_burst(rng, plan, b)
-    sky = SkyConfig(psf_sigma=cfg.psf_sigma_px, thresh=cfg.detect_sigma,
-                    background=BackgroundConfig(mesh=32, filter_size=1))
-    det, star_xy = [], []
-    for k in range(cfg.burst_frames):
+    catalog = burst_catalogue(plan, b, dirs, mag, cat)
+    measured, kept_k, failures = [], [], []
+    times = plan.t0 + b.times_s * u.s
+    for k in range(nf):
         img = render_frame(rng, plan, b, k, dirs, mag)
-        det.append(np.asarray(extract_stars(img, config=sky).xy).reshape(-1, 2))
-        star_xy.append(project_directions(dirs[cat], K, b.R[k]))
-    c = np.array([[(n - 1) / 2, (n - 1) / 2]])
-    rays_c = pixel_rays(c, K, b.R[0])
-    track_c = np.array([project_directions(rays_c, K, b.R[k])[0]
-                        for k in range(cfg.burst_frames)])
-    drift = np.diff(track_c, axis=0)  # sidereal drift per frame step (px)
-    is_cat, is_cand = separate_targets(det, star_xy, drift, n)
-    inside = np.all((b.target_xy > 2) & (b.target_xy < n - 3), axis=1)
+        fr = Frame(image=img, time=times[k],
+                   exposure_s=cfg.exposure_s, station=cfg.stations[b.station].name,
+                   wcs_guess=wcs_from_camera(K, b.R_believed[k], (n, n)),
+                   frame_id=frame_id(plan, b, k), sequence=f"v{b.visit}")
+        try:
+            measured.append(measure_frame(fr, catalog, config=pcfg))
+            kept_k.append(k)
+        except PlateSolveError as e:
+            failures.append((fr.frame_id, "astrometry", str(e)))
+        except ValueError as e:
+            failures.append((fr.frame_id, "extraction", str(e)))
+    kept_k = np.array(kept_k, int)
+    solved = np.zeros(nf, bool)
+    solved[kept_k] = True
+    inside = np.all((b.target_xy > 2) & (b.target_xy < n - 3), axis=2)      # (n_o, nf)
     lit = inside & (b.target_flux > 0)
-    n_det, n_cat, n_cand, n_false = (np.zeros(cfg.burst_frames, int) for _ in range(4))
-    t_det = np.zeros(cfg.burst_frames, bool)
-    t_kept = np.zeros(cfg.burst_frames, bool)
-    frames = []
-    for k in range(cfg.burst_frames):
-        d = det[k]
-        near = np.hypot(*(d - b.target_xy[k]).T) < TRUTH_PX if len(d) else np.zeros(0, bool)
-        near &= lit[k]
-        n_det[k], n_cat[k] = len(d), int(is_cat[k].sum())
-        n_cand[k] = int(is_cand[k].sum())
-        n_false[k] = int((is_cand[k] & ~near).sum())
-        t_det[k], t_kept[k] = bool(near.any()), bool((near & is_cand[k]).any())
-        frames.append((float(b.times_s[k]), d[is_cand[k]]))
+    n_det, n_cat, n_cand, n_false, n_match = (np.zeros(nf, int) for _ in range(5))
+    rms = np.full(nf, np.nan)
+    perr = np.full(nf, np.nan)
+    t_det = np.zeros((n_o, nf), bool)
+    t_kept = np.zeros((n_o, nf), bool)
+    cams = {}
+    cand = separate_targets(measured, radius_px=MATCH_PX) if measured else []
+    for i, (k, m) in enumerate(zip(kept_k, measured)):
+        d = m.xy
+        sol = m.solution
+        n_det[k], n_cat[k] = len(d), int(m.is_catalogue.sum())
+        n_cand[k], n_match[k], rms[k] = int(cand[i].sum()), sol.n_matched, sol.rms_arcsec
+        cams[int(k)] = camera_from_wcs(sol.wcs)
+        # scoring: the solution's true error at the objects' true pixels
+        true_dir = b.target_gcrs_km[:, k] - b.c_km[k]
+        true_dir /= np.linalg.norm(true_dir, axis=1, keepdims=True)
+        got = sol.pixel_to_directions(b.target_xy[:, k])
+        perr[k] = float(np.mean(np.degrees(np.arccos(np.clip(np.sum(got * true_dir, 1),
+                                                                -1, 1))) * 3600))
+        near_any = np.zeros(len(d), bool)
+        for j in range(n_o):
+            near = (np.hypot(*(d - b.target_xy[j, k]).T) < TRUTH_PX) & lit[j, k] if len(d) \
+                else np.zeros(0, bool)
+            near_any |= near
+            t_det[j, k], t_kept[j, k] = bool(near.any()), bool((near & cand[i]).any())
+        n_false[k] = int((cand[i] & ~near_any).sum())
+    # catalogue correlation: each object's TLE-predicted pixel through the solved plate
+    pred_xy = {}
+    for k, m in zip(kept_k, measured):
+        dtle = np.stack([plan.truth_direction(o, b.station, b.times_s[k])[0] for o in b.objs])
+        ra = np.degrees(np.arctan2(dtle[:, 1], dtle[:, 0])) % 360
+        dec = np.degrees(np.arcsin(np.clip(dtle[:, 2], -1, 1)))
+        pred_xy[int(k)] = m.solution.radec_to_pixel(ra, dec)
+    # unresolved objects: TLE predictions closer than the PSF can separate
+    for k, pxy in pred_xy.items():
+        for a_ in range(n_o):
+            for c_ in range(a_ + 1, n_o):
+                sep = float(np.hypot(*(pxy[a_] - pxy[c_])))
+                if sep < 3.0 * cfg.psf_sigma_px and lit[a_, k] and lit[c_, k]:
+                    failures.append((frame_id(plan, b, k), "association",
+                                     f"objects {plan.names[b.objs[a_]]} and "
+                                     f"{plan.names[b.objs[c_]]} are unresolved ({sep:.2f} px "
+                                     f"apart < 3 PSF σ = {3 * cfg.psf_sigma_px:g} px): their "
+                                     "tracklets are not associated"))
+    blocked = {f for f, st, _ in failures if st == "association"}
     tracks = []
-    for tr in _initiator(cfg).initiate(frames):
-        fi = np.array(tr.frame_indices)
-        xy = np.array([frames[f][1][d] for f, d in tr.hits]).reshape(-1, 2)
-        ray_cam = np.c_[(xy - K[0, 2]) / K[0, 0], np.ones(len(xy))]
-        dirs_t = np.einsum("kji,kj->ki", b.R[fi], ray_cam)  # camera → world: Rᵀ
-        dirs_t /= np.linalg.norm(dirs_t, axis=1, keepdims=True)
-        err = np.hypot(*(xy - b.target_xy[fi]).T)
-        true = bool(np.sum((err < TRUTH_PX) & lit[fi]) >= 3)
-        tracks.append({"frames": fi, "xy": xy, "dirs": dirs_t, "true": true})
-    return BurstResult(b.station, b.obj, b.visit, n_det, n_cat, n_cand, n_false, lit, t_det,
-                       t_kept, tracks)
+    frames = [(float(b.times_s[k]), m.xy[c]) for k, m, c in zip(kept_k, measured, cand)]
+    init_tracks = initiate_tracks(measured, config=pcfg, initiator=_initiator(cfg, v_max)) \
+        if len(measured) >= min(nf, 4) else []
+    for tr in init_tracks:
+        idx = np.array([f for f, _ in tr.hits])
+        fi = kept_k[idx]
+        xy = np.array([frames[f][1][dd] for f, dd in tr.hits]).reshape(-1, 2)
+        dirs_t = np.concatenate([measured[f].solution.pixel_to_directions(frames[f][1][dd][None])
+                                 for f, dd in tr.hits])
+        # scoring: which object (if any) is it; its true per-ray angle errors
+        true_obj, ray_err = -1, np.full(len(fi), np.nan)
+        for j in range(n_o):
+            err = np.hypot(*(xy - b.target_xy[j, fi]).T)
+            if np.sum((err < TRUTH_PX) & lit[j, fi]) >= 3:
+                true_obj = b.objs[j]
+                tdir = b.target_gcrs_km[j, fi] - b.c_km[fi]
+                tdir /= np.linalg.norm(tdir, axis=1, keepdims=True)
+                ray_err = np.degrees(np.arccos(np.clip(np.sum(dirs_t * tdir, 1), -1, 1))) * 3600
+                break
+        # correlation with the catalogue (TLE predictions through the solved plate)
+        dist = np.array([np.mean([np.hypot(*(xy[q] - pred_xy[int(fi[q])][j]))
+                                  for q in range(len(fi))]) for j in range(n_o)])
+        j_best = int(np.argmin(dist))
+        cat_obj = b.objs[j_best] if dist[j_best] < CORRELATE_PX else -1
+        unres = any(frame_id(plan, b, int(k)) in blocked for k in fi)
+        tracks.append({"frames": fi, "xy": xy, "dirs": dirs_t, "true_obj": true_obj,
+                       "true": true_obj >= 0, "cat_obj": cat_obj, "ray_err_arcsec": ray_err,
+                       "unresolved": unres})
+    # initiation GOSPA (Stone Soup) against the sunlit objects, from frame m − 1 on
+    # (an object in the umbra cannot be seen: it is passed outside the field, i.e. not
+    # present; a burst with fewer than two scorable frames left — a clouded frame — gets none:
+    # Stone Soup's SIAP needs two time stamps)
+    gospa = {}
+    m_conf = min(nf, 4)
+    if len(frames) - (m_conf - 1) >= 2:
+        truth = [np.where(lit[:, k, None], b.target_xy[:, k], -1e3) for k in kept_k]
+        gospa = initiation_metrics(init_tracks, frames, truth, width=float(n), c=5.0, p=1.0,
+                                   first_frame=m_conf - 1)
+    return BurstResult(b.station, b.obj, b.visit, b.objs, n_det, n_cat, n_cand, n_false, lit,
+                       t_det, t_kept, solved, rms, n_match, perr, cams, failures, gospa, v_max,
+                       tracks)
 
 
 # ------------------------------------------------------------------ cross-station stages
-def _track_dir(plan, res, tr, k):
-    """Direction and station position of a track at frame k (None if no hit there)."""
-    hit = np.flatnonzero(tr["frames"] == k)
-    return None if len(hit) == 0 else tr["dirs"][hit[0]]
+def expected_ray_sigma_px(config: CapstoneConfig | None = None) -> float:
+    """Expected per-axis centroid error (px) of a sunlit target: the Cramér–Rao bound of a
+    Gaussian PSF, ``σ² = σ_PSF²/F + 8π σ_PSF⁴ (b + r²)/F²`` (photon noise of the target plus
+    the background ``b`` and read noise ``r`` per pixel; Méndez et al. 2014). Stated before
+    any frame is rendered: the scorecard compares the measured per-ray error with it."""
+    cfg = _config(config)
+    f = 10 ** (-0.4 * (cfg.target_mag - cfg.zero_point_mag))
+    s2 = cfg.psf_sigma_px ** 2 / f + 8 * np.pi * cfg.psf_sigma_px ** 4 * (
+        cfg.sky_e + cfg.read_noise_e ** 2) / f ** 2
+    return float(np.sqrt(s2))
 
 
-def associate_tracklets(plan: NightPlan, results: list[BurstResult], *, gate_px: float = 2.0
-                        ) -> pd.DataFrame:
+def epipolar_gate_px(config: CapstoneConfig | None = None, *, sigma_px: float = 0.3,
+                     alpha: float = GATE_ALPHA) -> float:
+    """The epipolar gate (px): the χ²(1) bound ``σ_e √χ²₁(1 − α)`` on the epipolar distance of a
+    true pair, ``σ_e = √2 σ`` (both points' errors, ``σ`` per axis — the initiator's 0.3 px)."""
+    _config(config)
+    if not 0 < alpha < 1:
+        raise ValueError(f"alpha must lie in (0, 1), got {alpha}")
+    return float(np.sqrt(2.0) * sigma_px * np.sqrt(chi2.ppf(1 - alpha, 1)))
+
+
+def _epi_px(c_a, u_a, c_b, u_b, focal_px) -> float:
+    """Noise-free epipolar distance (px) of direction ``u_b`` (from ``c_b``) to the epipolar
+    plane of ray (``c_a``, ``u_a``): the angle to the plane times the focal length."""
+    nrm = np.cross(c_b - c_a, u_a)
+    nrm /= np.linalg.norm(nrm)
+    return float(abs(np.arcsin(np.clip(nrm @ u_b, -1, 1))) * focal_px)
+
+
+def associate_tracklets(plan: NightPlan, results: list[BurstResult], *,
+                        gate_px: float | None = None) -> pd.DataFrame:
     """Associate tracklets of the two stations visit by visit with the epipolar constraint.
 
-    At each visit, every tracklet of station 0 is compared with every tracklet of station 1 at
-    a common frame: the epipolar distance (px, in station 1's image) of the pair, then
-    one-to-one assignment below ``gate_px`` (:func:`eotrack.geometry.associate`, Hungarian).
+    At each visit every tracklet of station 0 is compared with every tracklet of station 1 at
+    a common frame: the fundamental matrix of the two PLATE-SOLVED cameras
+    (:func:`eotrack.astro.astrometry.camera_from_wcs`) gives the epipolar distance (px, in
+    station 1's image), then a one-to-one assignment below ``gate_px`` (default
+    :func:`epipolar_gate_px`; Hungarian, :func:`eotrack.geometry.associate`). Tracklets in a
+    frame flagged unresolved are left out.
 
     Returns
     -------
     pandas.DataFrame
-        One row per associated pair: visit, frame, objects (truth) of each side, ``correct``,
-        the two directions and station positions, the epipolar distance.
+        One row per associated pair: visit, frame, truth objects (scoring) and catalogue
+        labels of each side, ``correct``, ``cluster`` (the field holds several objects), the
+        epipolar distance, ``n_in_gate`` (station-1 tracklets inside the gate of the station-0
+        one), directions, station positions, the tracklets' mean times and directions, and the
+        true per-ray errors (scoring).
     """
     cfg = plan.config
-    K = camera_matrix(cfg)
+    gate = epipolar_gate_px(cfg) if gate_px is None else float(gate_px)
     by_visit: dict[int, list[list]] = {}
     for r, b in zip(results, plan.bursts):
         for tr in r.tracks:
-            by_visit.setdefault(r.visit, [[], []])[r.station].append((r, b, tr))
+            if not tr["unresolved"]:
+                by_visit.setdefault(r.visit, [[], []])[r.station].append((r, b, tr))
     rows = []
     for j, (a_list, b_list) in sorted(by_visit.items()):
         if not a_list or not b_list:
             continue
         D = np.full((len(a_list), len(b_list)), np.inf)
         frame = np.full(D.shape, -1)
-        for ia, (_ra, ba, ta) in enumerate(a_list):
-            for ib, (_rb, bb, tb) in enumerate(b_list):
-                common = np.intersect1d(ta["frames"], tb["frames"])
-                if len(common) == 0:
+        for ia, (ra, ba, ta) in enumerate(a_list):
+            for ib, (rb, bb, tb) in enumerate(b_list):
+                common = [k for k in np.intersect1d(ta["frames"], tb["frames"])
+                          if int(k) in ra.cams and int(k) in rb.cams]
+                if not common:
                     continue
                 k = int(common[len(common) // 2])
-                F = fundamental_from_poses(K, ba.R[k], ba.c_km[k], K, bb.R[k], bb.c_km[k])
+                Ka, Ra = ra.cams[k]
+                Kb, Rb = rb.cams[k]
+                F = fundamental_from_poses(Ka, Ra, ba.c_km[k], Kb, Rb, bb.c_km[k])
                 xa = ta["xy"][ta["frames"] == k]
                 xb = tb["xy"][tb["frames"] == k]
                 D[ia, ib] = float(epipolar_distances(F, xa, xb)[0, 0])
                 frame[ia, ib] = k
-        pairs = associate(np.where(np.isfinite(D), D, 1e9), gate_px, rule="hungarian")
+        pairs = associate(np.where(np.isfinite(D), D, 1e9), gate, rule="hungarian")
         for ia, ib in pairs:
             ra, ba, ta = a_list[ia]
             rb, bb, tb = b_list[ib]
             k = int(frame[ia, ib])
+            ha = int(np.flatnonzero(ta["frames"] == k)[0])
+            hb = int(np.flatnonzero(tb["frames"] == k)[0])
+            oa = ta["true_obj"]
+            truth = None
+            if oa >= 0:
+                truth = ba.target_gcrs_km[ba.objs.index(oa), k]
             rows.append({"visit": j, "frame": k, "t_s": float(ba.times_s[k]),
-                         "obj_a": ra.obj if ta["true"] else -1,
-                         "obj_b": rb.obj if tb["true"] else -1,
-                         "correct": bool(ta["true"] and tb["true"] and ra.obj == rb.obj),
+                         "obj_a": oa, "obj_b": tb["true_obj"],
+                         "cat_a": ta["cat_obj"], "cat_b": tb["cat_obj"],
+                         "correct": bool(oa >= 0 and oa == tb["true_obj"]),
+                         "cluster": len(ba.objs) > 1 or len(bb.objs) > 1,
                          "epipolar_px": float(D[ia, ib]),
-                         "dir_a": _track_dir(plan, ra, ta, k), "c_a": ba.c_km[k],
-                         "dir_b": _track_dir(plan, rb, tb, k), "c_b": bb.c_km[k],
-                         "truth_km": ba.target_gcrs_km[k] if ta["true"] else None})
+                         "n_in_gate": int(np.sum(D[ia] < gate)),
+                         "dir_a": ta["dirs"][ha], "c_a": ba.c_km[k],
+                         "dir_b": tb["dirs"][hb], "c_b": bb.c_km[k],
+                         "tm_a": float(ba.times_s[ta["frames"]].mean()),
+                         "um_a": _unit(ta["dirs"].mean(0)),
+                         "tm_b": float(bb.times_s[tb["frames"]].mean()),
+                         "um_b": _unit(tb["dirs"].mean(0)),
+                         "ray_err_a": float(ta["ray_err_arcsec"][ha]),
+                         "ray_err_b": float(tb["ray_err_arcsec"][hb]),
+                         "truth_km": truth})
     return pd.DataFrame(rows)
+
+
+def predicted_false_association(plan: NightPlan, *, gate_px: float | None = None,
+                                sigma_px: float = 0.3) -> pd.DataFrame:
+    """The epipolar gate's false-association rate from its χ² bound, before any frame.
+
+    For every visit, station-0 object ``o`` and station-1 object ``o' ≠ o`` both seen in the
+    visit, the noise-free epipolar distance ``d₀`` of the wrong pairing (from the objects' TLE
+    predictions) and the probability that it falls inside the gate,
+    ``P(|d₀ + ε| < g)``, ``ε ~ N(0, σ_e²)``, ``σ_e = √2 σ`` — the gate's own noise model.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per (visit, object): ``cluster`` flag and ``p_wrong_in_gate`` = the
+        probability that at least one wrong partner lies inside the gate.
+    """
+    cfg = plan.config
+    gate = epipolar_gate_px(cfg, sigma_px=sigma_px) if gate_px is None else float(gate_px)
+    se = np.sqrt(2.0) * sigma_px
+    seen: dict[int, list[list]] = {}
+    for b in plan.bursts:
+        for j, o in enumerate(b.objs):
+            if b.target_flux[j, 0] > 0:
+                seen.setdefault(b.visit, [[], []])[b.station].append(
+                    (o, b.c_km[0], b.target_gcrs_km[j, 0], len(b.objs) > 1))
+    rows = []
+    for v, (sa, sb) in sorted(seen.items()):
+        for o, ca, ra_, clus in sa:
+            if not any(o2 == o for o2, *_ in sb):
+                continue
+            ua = _unit(ra_ - ca)
+            p_none = 1.0
+            for o2, cb, rb_, _ in sb:
+                if o2 == o:
+                    continue
+                d0 = _epi_px(ca, ua, cb, _unit(rb_ - cb), cfg.focal_px)
+                p_in = norm.cdf((gate - d0) / se) - norm.cdf((-gate - d0) / se)
+                p_none *= 1.0 - p_in
+            rows.append({"visit": v, "object": plan.names[o], "cluster": clus,
+                         "p_wrong_in_gate": 1.0 - p_none})
+    return pd.DataFrame(rows, columns=["visit", "object", "cluster", "p_wrong_in_gate"])
+
+
+def _unit(v: np.ndarray) -> np.ndarray:
+    v = np.asarray(v, float)
+    return v / np.linalg.norm(v, axis=-1, keepdims=True)
 
 
 def triangulate_pairs(pairs: pd.DataFrame) -> pd.DataFrame:
     """Triangulate every associated pair (midpoint of the common perpendicular).
 
     Adds ``range_km`` (from station 0), ``range_err_km`` and ``pos_err_km`` (against SGP4,
-    correct pairs only) and ``gap_km`` (miss distance of the two rays).
+    correct pairs only), ``gap_km`` (miss distance of the two rays), ``b_perp_km`` (baseline
+    component perpendicular to station 0's line of sight) and the first-order range error
+    ``sigma_r_km`` expected from the pair's own TRUE in-plane ray errors (scoring).
     """
     if len(pairs) == 0:
-        return pairs.assign(range_km=[], range_err_km=[], pos_err_km=[], gap_km=[])
+        return pairs.assign(range_km=[], range_err_km=[], pos_err_km=[], gap_km=[],
+                            b_perp_km=[], inplane_a=[], inplane_b=[])
     o1 = np.stack(pairs["c_a"].to_numpy())
     d1 = np.stack(pairs["dir_a"].to_numpy())
     o2 = np.stack(pairs["c_b"].to_numpy())
     d2 = np.stack(pairs["dir_b"].to_numpy())
     p, gap = triangulate_two_rays(o1, d1, o2, d2, return_gap=True)
     rng_km = np.linalg.norm(p - o1, axis=1)
+    base = o2 - o1
+    b_perp = np.linalg.norm(np.cross(base, d1), axis=1)
     err_r = np.full(len(p), np.nan)
     err_p = np.full(len(p), np.nan)
+    ina = np.full(len(p), np.nan)
+    inb = np.full(len(p), np.nan)
     for i, (ok, tr) in enumerate(zip(pairs["correct"], pairs["truth_km"])):
         if ok and tr is not None:
             err_r[i] = rng_km[i] - np.linalg.norm(tr - o1[i])
             err_p[i] = np.linalg.norm(p[i] - tr)
-    return pairs.assign(range_km=rng_km, range_err_km=err_r, pos_err_km=err_p, gap_km=gap)
+            # the rays' true errors resolved in the epipolar plane (the part that moves range)
+            for dm, o, out in ((d1[i], o1[i], ina), (d2[i], o2[i], inb)):
+                ut = _unit(tr - o)
+                nrm = _unit(np.cross(base[i], ut))
+                inplane = _unit(np.cross(nrm, ut))
+                out[i] = float((dm - ut) @ inplane) * ARCSEC_PER_RAD
+    return pairs.assign(range_km=rng_km, range_err_km=err_r, pos_err_km=err_p, gap_km=gap,
+                        b_perp_km=b_perp, inplane_a=ina, inplane_b=inb)
 
 
-def _series(plan: NightPlan, results: list[BurstResult]) -> dict:
-    """Per (station, object): times and measured unit directions of true-or-not tracklets."""
-    out: dict[tuple[int, int], list] = {}
-    for r, b in zip(results, plan.bursts):
-        for tr in r.tracks:
-            t = b.times_s[tr["frames"]]
-            out.setdefault((r.station, r.obj), []).append((t.mean(), tr["dirs"].mean(0)))
-    return out
+def sigma_reconciliation(pairs: pd.DataFrame, config: CapstoneConfig | None = None
+                         ) -> dict[str, float]:
+    """σ_R ≈ R²σ_θ/B with assumed and MEASURED inputs, beside the measured range error.
+
+    ``assumed``: σ_θ = 0.2 px (the old text) and the full baseline; ``measured``: σ_θ the RMS
+    of the rays' measured in-plane errors (both rays: √(σ_a² + σ_b²)) and each pair's
+    perpendicular baseline ``B⊥``; ``range_rms_km``: the measured RMS range error.
+    """
+    cfg = _config(config)
+    tri = pairs.dropna(subset=["range_err_km"]) if len(pairs) else pairs
+    if len(tri) == 0:
+        return {k: np.nan for k in ("sigma_a_arcsec", "sigma_b_arcsec", "ray_rms_arcsec",
+                                    "assumed_km", "measured_km", "range_rms_km", "range_km",
+                                    "baseline_km", "b_perp_km")}
+    R = float(np.sqrt(np.mean(tri["range_km"] ** 2)))
+    base = float(np.mean(np.linalg.norm(np.stack(tri["c_b"].to_numpy())
+                                        - np.stack(tri["c_a"].to_numpy()), axis=1)))
+    sa = float(np.sqrt(np.mean(tri["inplane_a"] ** 2)))
+    sb = float(np.sqrt(np.mean(tri["inplane_b"] ** 2)))
+    fac = tri["range_km"] ** 2 / tri["b_perp_km"] / ARCSEC_PER_RAD
+    meas = float(np.sqrt(np.mean(fac ** 2 * (sa ** 2 + sb ** 2))))
+    ray = np.r_[tri["ray_err_a"], tri["ray_err_b"]]
+    return {"sigma_a_arcsec": sa, "sigma_b_arcsec": sb,
+            "ray_rms_arcsec": float(np.sqrt(np.nanmean(ray ** 2))),
+            "assumed_km": range_error_km(R, base, 0.2 * cfg.pixel_scale_arcsec),
+            "measured_km": meas, "range_rms_km": float(np.sqrt(np.mean(tri["range_err_km"] ** 2))),
+            "range_km": R, "baseline_km": base, "b_perp_km": float(tri["b_perp_km"].mean())}
+
+
+def _radec_deg(d: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    d = _unit(d)
+    return (np.degrees(np.arctan2(d[..., 1], d[..., 0])) % 360.0,
+            np.degrees(np.arcsin(np.clip(d[..., 2], -1, 1))))
 
 
 def _radec_arcsec(d: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    d = d / np.linalg.norm(d, axis=-1, keepdims=True)
+    d = _unit(d)
     ra = np.unwrap(np.arctan2(d[..., 1], d[..., 0]))
     dec = np.arcsin(np.clip(d[..., 2], -1, 1))
     return ra * ARCSEC_PER_RAD, dec * ARCSEC_PER_RAD
 
 
-def predict_through_eclipse(plan: NightPlan, results: list[BurstResult], *,
-                            methods: tuple[str, ...] = PREDICTORS, min_points: int = 6,
-                            threshold_arcsec: float = 6.0, fit_window_s: float = 7200.0
-                            ) -> pd.DataFrame:
-    """Fit each station's pre-eclipse RA/Dec series of each object and predict through the umbra.
+def _tracklet_series(plan: NightPlan, results: list[BurstResult], pairs: pd.DataFrame
+                     ) -> dict[str, dict[tuple[int, int], list]]:
+    """Per series and (station, object): ``(t, unit direction, true object)`` of tracklets.
 
-    Uses :func:`eotrack.experiments.wransac.fit_predict` (notebook 01's predictors, the
-    sinusoid-plus-drift model); errors are against the SGP4 truth on a 1-min grid inside the
-    umbra, as the great-circle angle (″). Only the ``fit_window_s`` before the umbra entry are
-    fitted (notebook 01's paper fits 2 h).
+    ``field``: every tracklet of the object's field bursts (the old chain; field objects only).
+    ``catalogue``: tracklets correlated with the object's TLE prediction.
+    ``confirmed``: tracklets of associated pairs whose two sides correlate with the object.
+    """
+    out: dict[str, dict] = {"field": {}, "catalogue": {}, "confirmed": {}}
+    for r, b in zip(results, plan.bursts):
+        for tr in r.tracks:
+            item = (float(b.times_s[tr["frames"]].mean()), _unit(tr["dirs"].mean(0)),
+                    tr["true_obj"])
+            out["field"].setdefault((r.station, r.obj), []).append(item)
+            if tr["cat_obj"] >= 0:
+                out["catalogue"].setdefault((r.station, tr["cat_obj"]), []).append(item)
+    if len(pairs):
+        for _, p in pairs.iterrows():
+            if p["cat_a"] >= 0 and p["cat_a"] == p["cat_b"]:
+                o = int(p["cat_a"])
+                out["confirmed"].setdefault((0, o), []).append((p["tm_a"], p["um_a"], p["obj_a"]))
+                out["confirmed"].setdefault((1, o), []).append((p["tm_b"], p["um_b"], p["obj_b"]))
+    return out
+
+
+def _hhmm(plan: NightPlan, t_s: float) -> str:
+    return (plan.t0 + float(t_s) * u.s).datetime.strftime("%H:%M UTC")
+
+
+def eclipse_status(plan: NightPlan, times: dict[tuple[int, int], np.ndarray] | None = None, *,
+                   min_points: int = 6, fit_window_s: float = 7200.0) -> pd.DataFrame:
+    """Which (station, object) can be predicted through an eclipse, and why not.
+
+    The one eclipse criterion of the chain: at least ``min_points`` observations in the
+    ``fit_window_s`` before the umbra entry AND at least one after it (the object is seen
+    again, so the prediction can be checked). ``times=None``: the PLANNED visits (station
+    dark, field above the elevation limit — checked before any frame is rendered);
+    otherwise the tracklet times per (station, object) that the run produced.
+
+    Returns
+    -------
+    pandas.DataFrame
+        ``station, object, umbra_in, umbra_out, n_before, n_after, ok, reason``.
+    """
+    cfg = plan.config
+    what = "planned visits" if times is None else "tracklets"
+    rows = []
+    for o, name in enumerate(plan.names):
+        umb = plan.grid_shadow[o] == 2
+        fld = cfg.field_of[o]
+        for s, spec in enumerate(cfg.stations):
+            base = {"station": spec.name, "object": name}
+            if not umb.any():
+                rows.append({**base, "umbra_in": "", "umbra_out": "", "n_before": 0,
+                             "n_after": 0, "ok": False,
+                             "reason": "does not enter the umbra during the night"})
+                continue
+            t_in = plan.grid_s[np.argmax(umb)]
+            t_out = plan.grid_s[len(umb) - 1 - np.argmax(umb[::-1])]
+            if times is None:
+                ok = plan.dark[s] & (plan.elevation_deg[s, fld] > cfg.min_elevation_deg)
+                t = plan.visit_s[ok]
+            else:
+                t = np.asarray(times.get((s, o), []), float)
+            nb = int(np.sum((t < t_in) & (t >= t_in - fit_window_s)))
+            na = int(np.sum(t >= t_in))
+            reason = ""
+            if nb < min_points:
+                dark = plan.visit_s[plan.dark[s]]
+                reason = (f"only {nb} {what} in the {fit_window_s / 3600:g} h before the umbra "
+                          f"entry at {_hhmm(plan, t_in)} (need {min_points}; darkness at "
+                          f"{spec.name} from {_hhmm(plan, dark.min()) if len(dark) else '—'})")
+            elif na == 0:
+                reason = (f"{nb} {what} before the umbra entry at {_hhmm(plan, t_in)} but none "
+                          "after it")
+            rows.append({**base, "umbra_in": _hhmm(plan, t_in), "umbra_out": _hhmm(plan, t_out),
+                         "n_before": nb, "n_after": na, "ok": not reason, "reason": reason})
+    return pd.DataFrame(rows)
+
+
+def eclipse_check(plan: NightPlan, times: dict | None = None, **kw) -> list[tuple[int, int]]:
+    """The (station, object) pairs :func:`eclipse_status` passes.
 
     Raises
     ------
     ValueError
-        Stage ``prediction``: no object enters the umbra during a station's observations.
+        Stage ``prediction``: no pair passes — the message lists each pair's reason (e.g.
+        "7 tracklets before the umbra entry at 05:25 UTC but none after it").
     """
+    st = eclipse_status(plan, times, **kw)
+    ok = [(s, o) for (s, o), good in zip(
+        [(s, o) for o in range(len(plan.names)) for s in range(len(plan.config.stations))],
+        st["ok"]) if good]
+    if not ok:
+        why = "; ".join(f"{r.object} from {r.station}: {r.reason}" for r in st.itertuples())
+        raise ValueError("stage 'prediction': no object can be predicted through an eclipse "
+                         f"(from {plan.t0.iso}, {plan.config.night_hours:g} h) — {why}. GEO "
+                         "eclipses happen within about 6 weeks of an equinox, around the "
+                         "satellite's local midnight")
+    return ok
+
+
+def _truth_err(plan, o, s, tq, v):
+    truth = plan.truth_direction(o, s, tq)
+    return np.degrees(np.arccos(np.clip(np.sum(v * truth, 1), -1, 1))) * 3600
+
+
+def _watch_mask(plan: NightPlan, s: int, o: int, tq: np.ndarray) -> np.ndarray:
+    """Times ``tq`` at which station ``s`` could watch object ``o`` (dark, above the limit)."""
+    cfg = plan.config
+    ok = plan.dark[s] & (plan.elevation_deg[s, cfg.field_of[o]] > cfg.min_elevation_deg)
+    return np.interp(tq, plan.visit_s, ok.astype(float)) > 0.5
+
+
+def predict_through_eclipse(plan: NightPlan, results: list[BurstResult],
+                            pairs: pd.DataFrame | None = None, *,
+                            methods: tuple[str, ...] = PREDICTORS, min_points: int = 6,
+                            threshold_arcsec: float = 6.0, fit_window_s: float = 7200.0,
+                            orbit_dynamics: str = "j2") -> tuple[pd.DataFrame, pd.DataFrame]:
+    """Predict each object's angles through its umbra passage, from the ``fit_window_s`` before.
+
+    Sinusoid-plus-drift predictors (:func:`eotrack.experiments.wransac.fit_predict`, notebook
+    01) per station on three tracklet series (:func:`_tracklet_series`): ``field`` (every
+    tracklet of the object's field — the old chain), ``catalogue`` (tracklets correlated with
+    the object's TLE prediction) and ``confirmed`` (tracklets of epipolar-associated pairs).
+    And an ORBIT (:func:`eotrack.astro.fit_orbit`: Gauss start, robust Cauchy least squares,
+    two-body + J2) fitted to BOTH stations' catalogue-correlated angles in the same window,
+    whose predicted angles are scored from each station. Errors are great-circle angles (″)
+    against SGP4 on a 1-min grid inside the umbra, where the station could watch (dark, object
+    above the limit).
+
+    Returns
+    -------
+    prediction, status
+        Prediction rows ``station, object, series, method, n_fit, n_wrong, eclipse_min,
+        rms_arcsec, max_arcsec`` (``n_wrong``: fitted tracklets of another or no object,
+        scoring) and the :func:`eclipse_status` of the catalogue-correlated tracklets.
+
+    Raises
+    ------
+    ValueError
+        Stage ``prediction``: no (station, object) passes :func:`eclipse_status` on the run's
+        catalogue-correlated tracklets (the message names each pair's reason).
+    """
+    from eotrack.astro import fit_orbit
     from eotrack.experiments.wransac import fit_predict
 
-    series = _series(plan, results)
+    cfg = plan.config
+    pairs = pd.DataFrame() if pairs is None else pairs
+    series = _tracklet_series(plan, results, pairs)
+    kw = {"min_points": min_points, "fit_window_s": fit_window_s}
+    cat_times = {k: np.array([p[0] for p in v]) for k, v in series["catalogue"].items()}
+    status = eclipse_status(plan, cat_times, **kw)
+    eclipse_check(plan, cat_times, **kw)
+    rng = np.random.default_rng(cfg.seed + 1)
     rows = []
-    rng = np.random.default_rng(plan.config.seed + 1)
-    any_eclipse = False
-    for (s, o), pts in sorted(series.items()):
+    names = plan.names
+
+    def window(o):
         umb = plan.grid_shadow[o] == 2
-        if not umb.any():
-            continue
         t_in = plan.grid_s[np.argmax(umb)]
         t_out = plan.grid_s[len(umb) - 1 - np.argmax(umb[::-1])]
-        t = np.array([p[0] for p in pts])
-        d = np.stack([p[1] for p in pts])
-        before = (t < t_in) & (t >= t_in - fit_window_s)
-        if before.sum() < min_points or t.max() < t_in:
+        return t_in, t_out, plan.grid_s[(plan.grid_s >= t_in) & (plan.grid_s <= t_out)]
+
+    def row(s, o, name, m, n_fit, n_wrong, t_in, t_out, err):
+        return {"station": cfg.stations[s].name, "object": names[o], "series": name,
+                "method": m, "n_fit": int(n_fit), "n_wrong": int(n_wrong),
+                "eclipse_min": (t_out - t_in) / 60,
+                "rms_arcsec": float(np.sqrt(np.mean(err ** 2))), "max_arcsec": float(err.max())}
+
+    def ok_in(st, s, o):
+        sel = st[(st["station"] == cfg.stations[s].name) & (st["object"] == names[o])]
+        return bool(sel["ok"].iloc[0]) if len(sel) else False
+
+    for name in ("field", "catalogue", "confirmed"):
+        times = {k: np.array([p[0] for p in v]) for k, v in series[name].items()}
+        st = eclipse_status(plan, times, **kw)
+        for (s, o), pts in sorted(series[name].items()):
+            if not ok_in(st, s, o):
+                continue
+            t_in, t_out, tq = window(o)
+            tq = tq[_watch_mask(plan, s, o, tq)]
+            if len(tq) == 0:
+                continue
+            order = np.argsort([p[0] for p in pts], kind="stable")
+            t = np.array([pts[i][0] for i in order])
+            d = np.stack([pts[i][1] for i in order])
+            tru = np.array([pts[i][2] for i in order])
+            before = (t < t_in) & (t >= t_in - fit_window_s)
+            ra, dec = _radec_arcsec(d[before])
+            for m in methods:
+                pr = fit_predict(m, t[before], ra - ra[0], tq, rng=rng, threshold=threshold_arcsec)
+                pd_ = fit_predict(m, t[before], dec - dec[0], tq, rng=rng,
+                                  threshold=threshold_arcsec)
+                ra_p = (pr + ra[0]) / ARCSEC_PER_RAD
+                de_p = (pd_ + dec[0]) / ARCSEC_PER_RAD
+                v = np.stack([np.cos(de_p) * np.cos(ra_p), np.cos(de_p) * np.sin(ra_p),
+                              np.sin(de_p)], 1)
+                rows.append(row(s, o, name, m, before.sum(), np.sum(tru[before] != o), t_in,
+                                t_out, _truth_err(plan, o, s, tq, v)))
+    # the orbit: both stations' catalogue-correlated angles in the window, one fit per object
+    sig = max(np.sqrt(2) * expected_ray_sigma_px(cfg) * cfg.pixel_scale_arcsec, 0.5)
+    for o in range(len(names)):
+        if not (plan.grid_shadow[o] == 2).any():
             continue
-        any_eclipse = True
-        tq = plan.grid_s[(plan.grid_s >= t_in) & (plan.grid_s <= t_out)]
-        ra, dec = _radec_arcsec(d[before])
-        truth = plan.truth_direction(o, s, tq)
-        for m in methods:
-            pr = fit_predict(m, t[before], ra - ra[0], tq, rng=rng, threshold=threshold_arcsec)
-            pd_ = fit_predict(m, t[before], dec - dec[0], tq, rng=rng,
-                              threshold=threshold_arcsec)
-            ra_p = (pr + ra[0]) / ARCSEC_PER_RAD
-            de_p = (pd_ + dec[0]) / ARCSEC_PER_RAD
+        t_in, t_out, tq_all = window(o)
+        obs = [(tt, s, uu, tr) for s in range(2) for tt, uu, tr in series["catalogue"].get(
+            (s, o), []) if t_in - fit_window_s <= tt < t_in]
+        after = sum(tt >= t_in for s in range(2) for tt, _, _ in series["catalogue"].get(
+            (s, o), []))
+        if len(obs) < min_points or after == 0:
+            continue
+        obs.sort(key=lambda q: (q[0], q[1]))
+        t = np.array([q[0] for q in obs])
+        # two stations observe at the same instants; fit_orbit wants increasing times: a
+        # later duplicate is placed 1 ms after (the object moves ≈ 3 m, 10⁻³ of the
+        # triangulation error)
+        for i in range(1, len(t)):
+            if t[i] <= t[i - 1]:
+                t[i] = t[i - 1] + 1e-3
+        site = np.stack([_station_at(plan, q[1], q[0]) for q in obs])
+        ra_d, de_d = _radec_deg(np.stack([q[2] for q in obs]))
+        try:
+            fit = fit_orbit(t, ra_d, de_d, site, sigma_arcsec=sig, loss="cauchy",
+                            dynamics=orbit_dynamics)
+        except ValueError:
+            continue
+        tru = np.array([q[3] for q in obs])
+        for s in range(2):
+            tq = tq_all[_watch_mask(plan, s, o, tq_all)]
+            if len(tq) == 0:
+                continue
+            site_q = np.stack([_station_at(plan, s, x) for x in tq])
+            ra_p, de_p = np.radians(fit.predict(tq, site_q))
             v = np.stack([np.cos(de_p) * np.cos(ra_p), np.cos(de_p) * np.sin(ra_p),
                           np.sin(de_p)], 1)
-            err = np.degrees(np.arccos(np.clip(np.sum(v * truth, 1), -1, 1))) * 3600
-            rows.append({"station": plan.config.stations[s].name, "object": plan.names[o],
-                         "method": m, "n_fit": int(before.sum()),
-                         "eclipse_min": (t_out - t_in) / 60, "rms_arcsec": float(np.sqrt(
-                             np.mean(err ** 2))), "max_arcsec": float(err.max())})
-    if not any_eclipse:
-        raise ValueError("stage 'prediction': no object enters the Earth's umbra while a "
-                         f"station has at least {min_points} tracklets of it before — a night "
-                         "with no eclipse (GEO eclipses happen near the equinoxes, around the "
-                         "satellite's local midnight)")
-    return pd.DataFrame(rows)
+            rows.append(row(s, o, "catalogue, both stations", "orbit", len(obs),
+                            np.sum(tru != o), t_in, t_out, _truth_err(plan, o, s, tq, v)))
+    cols = ["station", "object", "series", "method", "n_fit", "n_wrong", "eclipse_min",
+            "rms_arcsec", "max_arcsec"]
+    return pd.DataFrame(rows, columns=cols), status
+
+
+def _station_at(plan: NightPlan, s: int, t_s: float) -> np.ndarray:
+    return np.array([np.interp(t_s, plan.grid_s, plan.grid_station_km[s][:, i])
+                     for i in range(3)])
 
 
 @dataclass
@@ -474,80 +967,117 @@ class NightResult:
     pairs: pd.DataFrame
     prediction: pd.DataFrame
     budget: pd.DataFrame
+    eclipse: pd.DataFrame = field(default_factory=pd.DataFrame)
+    failures: pd.DataFrame = field(default_factory=pd.DataFrame)
+    false_association: pd.DataFrame = field(default_factory=pd.DataFrame)
+    sigma: dict = field(default_factory=dict)
     wall_s: dict = field(default_factory=dict)
 
 
+def _rms(x) -> float:
+    x = np.asarray(x, float)
+    x = x[np.isfinite(x)]
+    return float(np.sqrt(np.mean(x ** 2))) if len(x) else np.nan
+
+
 def error_budget(plan: NightPlan, bursts: list[BurstResult], pairs: pd.DataFrame,
-                 prediction: pd.DataFrame) -> pd.DataFrame:
+                 prediction: pd.DataFrame, false_assoc: pd.DataFrame | None = None,
+                 sigma: dict | None = None) -> pd.DataFrame:
     """The stage-by-stage error budget (one row per metric)."""
-    lit = np.concatenate([r.target_lit for r in bursts])
-    det = np.concatenate([r.target_detected for r in bursts])
-    kept = np.concatenate([r.target_kept for r in bursts])
-    n_frames = len(lit)
+    lit = np.concatenate([r.target_lit.ravel() for r in bursts])
+    det = np.concatenate([r.target_detected.ravel() for r in bursts])
+    kept = np.concatenate([r.target_kept.ravel() for r in bursts])
+    solved = np.concatenate([r.solved for r in bursts])
+    n_frames = len(solved)
     false_c = int(sum(r.n_false_candidates.sum() for r in bursts))
     n_det = int(sum(r.n_detections.sum() for r in bursts))
-    lit_b = [r for r in bursts if r.target_lit.sum() >= 3]
-    found = sum(any(t["true"] for t in r.tracks) for r in lit_b)
+    plate_rms = np.concatenate([r.plate_rms_arcsec for r in bursts])
+    plate_err = np.concatenate([r.plate_err_arcsec for r in bursts])
+    n_match = np.concatenate([r.plate_n_matched for r in bursts])[solved]
+    n_lit_b = found = 0
+    for r in bursts:
+        for j, o in enumerate(r.objs):
+            if r.target_lit[j].sum() >= 3:
+                n_lit_b += 1
+                found += any(t["true_obj"] == o for t in r.tracks)
     n_tracks = sum(len(r.tracks) for r in bursts)
-    false_t = sum(not t["true"] for r in bursts for t in r.tracks)
+    false_t = sum(t["true_obj"] < 0 for r in bursts for t in r.tracks)
+    g = [r.gospa for r in bursts if r.gospa]
+    gm = {k: float(np.mean([x[k] for x in g])) if g else np.nan
+          for k in ("gospa", "gospa localisation", "gospa missed", "gospa false")}
     n_pairs = len(pairs)
-    correct = int(pairs["correct"].sum()) if n_pairs else 0
+    correct = float(pairs["correct"].mean()) if n_pairs else np.nan
+    clus = pairs[pairs["cluster"]] if n_pairs else pairs
     tri = pairs.dropna(subset=["range_err_km"]) if n_pairs else pairs
+    fa = false_assoc if false_assoc is not None else pd.DataFrame(
+        columns=["cluster", "p_wrong_in_gate"])
+    sg = sigma or {}
+    ray = np.concatenate([np.ravel(t["ray_err_arcsec"]) for r in bursts for t in r.tracks]) \
+        if n_tracks else np.zeros(0)
     rows = [
-        ("frames", "frames rendered", n_frames, ""),
+        ("frames", "frames rendered", n_frames, "count"),
+        ("frames", "frames left out (no plate solution)", int(n_frames - solved.sum()),
+         "count"),
         ("extraction", "detections per frame", n_det / max(n_frames, 1), ""),
         ("extraction", "target completeness (sunlit frames)", det[lit].mean() if lit.any()
          else np.nan, "fraction"),
+        ("astrometry", "matched stars per frame (median)",
+         float(np.median(n_match)) if len(n_match) else np.nan, "count"),
+        ("astrometry", "plate solution: RMS star residual (median)",
+         float(np.nanmedian(plate_rms)) if np.isfinite(plate_rms).any() else np.nan,
+         "arcsec"),
+        ("astrometry", "plate solution: true error at the objects (RMS)", _rms(plate_err),
+         "arcsec"),
         ("separation", "target kept as candidate", kept[lit].mean() if lit.any() else np.nan,
          "fraction"),
         ("separation", "false candidates per frame", false_c / max(n_frames, 1), ""),
-        ("initiation", "recall (bursts with ≥ 3 sunlit frames)",
-         found / max(len(lit_b), 1), "fraction"),
+        ("initiation", "velocity gate", float(bursts[0].v_max_px_s) if bursts else np.nan,
+         "px/s"),
+        ("initiation", "recall (object-bursts with ≥ 3 sunlit frames)",
+         found / max(n_lit_b, 1), "fraction"),
         ("initiation", "false tracks", false_t, "count"),
         ("initiation", "tracks", n_tracks, "count"),
+        ("initiation", "GOSPA per burst (mean, c = 5 px)", gm["gospa"], "px"),
+        ("initiation", "GOSPA: missed part", gm["gospa missed"], "px"),
+        ("initiation", "GOSPA: false part", gm["gospa false"], "px"),
+        ("initiation", "GOSPA: localisation part", gm["gospa localisation"], "px"),
+        ("association", "epipolar gate (χ², α = 0.01)", epipolar_gate_px(plan.config), "px"),
         ("association", "pairs associated", n_pairs, "count"),
-        ("association", "correct pairs", correct / max(n_pairs, 1), "fraction"),
+        ("association", "correct pairs", correct, "fraction"),
+        ("association", "correct pairs, cluster field", float(clus["correct"].mean())
+         if len(clus) else np.nan, "fraction"),
+        ("association", "χ² bound: wrong partner inside the gate, cluster field",
+         float(fa[fa["cluster"]]["p_wrong_in_gate"].mean()) if fa["cluster"].any() else np.nan,
+         "fraction"),
+        ("association", "χ² bound: wrong partner inside the gate, single fields",
+         float(fa[~fa["cluster"].astype(bool)]["p_wrong_in_gate"].mean())
+         if (~fa["cluster"].astype(bool)).any() else np.nan, "fraction"),
+        ("triangulation", "per-ray angle error (RMS, tracklet hits)", _rms(ray), "arcsec"),
+        ("triangulation", "expected RMS range error from the measured in-plane ray errors",
+         sg.get("measured_km", np.nan), "km"),
+        ("triangulation", "RMS range error", _rms(tri["range_err_km"]) if len(tri) else np.nan,
+         "km"),
         ("triangulation", "median |range error|",
          float(np.median(np.abs(tri["range_err_km"]))) if len(tri) else np.nan, "km"),
-        ("triangulation", "RMS position error",
-         float(np.sqrt(np.mean(tri["pos_err_km"] ** 2))) if len(tri) else np.nan, "km"),
+        ("triangulation", "RMS position error", _rms(tri["pos_err_km"]) if len(tri) else np.nan,
+         "km"),
     ]
-    for m in PREDICTORS:
-        sel = prediction[prediction["method"] == m] if len(prediction) else prediction
-        rows.append(("prediction", f"{m}: RMS error through the eclipse",
-                     float(np.sqrt(np.mean(sel["rms_arcsec"] ** 2))) if len(sel) else np.nan,
-                     "arcsec"))
+    for series, methods in (("field", PREDICTORS), ("catalogue", PREDICTORS),
+                            ("confirmed", PREDICTORS), ("catalogue, both stations", ("orbit",))):
+        for m in methods:
+            sel = prediction[(prediction["series"] == series) & (prediction["method"] == m)] \
+                if len(prediction) else prediction
+            rows.append(("prediction", f"{m} ({series}): RMS error through the eclipse",
+                         _rms(sel["rms_arcsec"]) if len(sel) else np.nan, "arcsec"))
     return pd.DataFrame(rows, columns=["stage", "metric", "value", "unit"])
 
 
-def eclipse_check(plan: NightPlan, *, min_lead_s: float = 7200.0) -> list[tuple[int, int]]:
-    """(station, object) pairs whose umbra entry a station watches with ``min_lead_s`` of dark
-    observing before it.
-
-    Raises
-    ------
-    ValueError
-        Stage ``prediction``: a night with no eclipse to predict through.
-    """
-    cfg = plan.config
-    out = []
-    for o in range(len(cfg.norad_ids)):
-        umb = plan.grid_shadow[o] == 2
-        if not umb.any():
-            continue
-        t_in = plan.grid_s[np.argmax(umb)]
-        for s in range(len(cfg.stations)):
-            ok = plan.dark[s] & (plan.elevation_deg[s, o] > cfg.min_elevation_deg)
-            watched = plan.visit_s[ok]
-            if np.any((watched < t_in) & (watched >= t_in - min_lead_s)) and \
-                    np.any(watched >= t_in):
-                out.append((s, o))
-    if not out:
-        raise ValueError(f"stage 'prediction': a night with no eclipse — no object enters the "
-                         f"Earth's umbra while a station watches it (from {plan.t0.iso}, "
-                         f"{cfg.night_hours} h); GEO eclipses happen within about 6 weeks of "
-                         "an equinox, around the satellite's local midnight")
-    return out
+def quick_config(config: CapstoneConfig | None = None) -> CapstoneConfig:
+    """The QUICK night: only the cluster field (XM-3 and its two companions), 03:20–06:50 UTC
+    around XM-3's eclipse, 15-min visits — every stage runs, in a few seconds per stage."""
+    cfg = _config(config)
+    return replace(cfg, norad_ids=(28626,), night_start_utc="2006-03-25T03:20:00",
+                   night_hours=3.5, cloud_frames=((0, 0, 2, 1),))
 
 
 def run_night(config: CapstoneConfig | None = None, *, runner: TrialRunner | None = None,
@@ -568,13 +1098,13 @@ def run_night(config: CapstoneConfig | None = None, *, runner: TrialRunner | Non
     ------
     ValueError
         Naming the stage that produced nothing: ``sky`` (an object never rises),
-        ``prediction`` (a night with no eclipse; checked before any frame is rendered),
-        ``extraction`` (no target detected in any frame), ``initiation`` (no track),
-        ``association`` (no cross-station pair).
+        ``prediction`` (no eclipse can be watched — checked on the plan before any frame is
+        rendered — or, after the run, no object has the tracklets before AND after its umbra
+        entry), ``extraction`` (no object detected in any frame), ``initiation`` (no track),
+        ``association`` (no cross-station pair). Frames whose plate solution fails and
+        unresolved objects do not stop the night: they are listed in ``failures``.
     """
-    cfg = config or CapstoneConfig()
-    if not isinstance(cfg, CapstoneConfig):
-        raise TypeError(f"config must be a CapstoneConfig, got {type(cfg).__name__}")
+    cfg = _config(config)
     runner = runner if runner is not None else TrialRunner(progress=False)
     if not isinstance(runner, TrialRunner):
         raise TypeError(f"runner must be a TrialRunner, got {type(runner).__name__}")
@@ -582,35 +1112,42 @@ def run_night(config: CapstoneConfig | None = None, *, runner: TrialRunner | Non
     t = time.perf_counter()
     plan = make_plan(cfg)
     eclipse_check(plan)
+    velocity_gate(cfg)
+    fa = predicted_false_association(plan)
     wall["sky"] = time.perf_counter() - t
     t = time.perf_counter()
     bursts = runner.map(observe_burst, len(plan.bursts), seed=cfg.seed, args=(plan,),
                         desc="bursts")
     wall["frames"] = time.perf_counter() - t
+    failures = pd.DataFrame([{"frame": f, "stage": st, "reason": why} for r in bursts
+                             for f, st, why in r.failures], columns=["frame", "stage", "reason"])
     empty_pairs = triangulate_pairs(pd.DataFrame())
-    empty_pred = pd.DataFrame(columns=["station", "object", "method", "rms_arcsec"])
+    empty_pred = pd.DataFrame(columns=["station", "object", "series", "method", "n_fit",
+                                       "n_wrong", "eclipse_min", "rms_arcsec", "max_arcsec"])
     t = time.perf_counter()
-    pairs, pred = empty_pairs, empty_pred
+    pairs, pred, status, sig = empty_pairs, empty_pred, pd.DataFrame(), {}
     try:
         if not any(r.target_kept.any() for r in bursts):
-            raise ValueError(f"stage 'extraction': no target detected in any of "
-                             f"{sum(len(r.target_lit) for r in bursts)} frames — no detection "
-                             f"left after star removal lies at a target (targets of magnitude "
+            raise ValueError(f"stage 'extraction': no object detected in any of "
+                             f"{sum(len(r.solved) for r in bursts)} frames — no detection "
+                             f"left after star removal lies at an object (objects of magnitude "
                              f"{cfg.target_mag} against a sky of {cfg.sky_e} e⁻/px)")
         if not any(r.tracks for r in bursts):
             raise ValueError("stage 'initiation': no track confirmed in any of "
                              f"{len(bursts)} bursts")
         pairs = triangulate_pairs(associate_tracklets(plan, bursts))
+        sig = sigma_reconciliation(pairs, cfg)
         if len(pairs) == 0:
             raise ValueError("stage 'association': no tracklet of one station matched one of "
                              "the other — do the stations observe at the same times?")
-        pred = predict_through_eclipse(plan, bursts)
+        pred, status = predict_through_eclipse(plan, bursts, pairs)
     except ValueError:
         if strict:
             raise
-        pred = empty_pred
     wall["cross-station"] = time.perf_counter() - t
-    return NightResult(plan, bursts, pairs, pred, error_budget(plan, bursts, pairs, pred), wall)
+    return NightResult(plan, bursts, pairs, pred,
+                       error_budget(plan, bursts, pairs, pred, fa, sig), status, failures, fa,
+                       sig, wall)
 
 
 def _config(config) -> CapstoneConfig:
@@ -651,6 +1188,89 @@ def range_error_km(range_km: float, baseline_km: float, sigma_arcsec: float) -> 
         if not (np.isfinite(v) and v > 0):
             raise ValueError(f"{n} must be a positive finite number, got {v}")
     return float(range_km ** 2 * sigma_arcsec / ARCSEC_PER_RAD / baseline_km)
+
+
+def expected_completeness(config: CapstoneConfig | None = None) -> float:
+    """Expected fraction of sunlit frames in which the extractor finds an object, before the
+    run: the peak pixel (PSF centred at a uniformly random sub-pixel phase) above
+    ``detect_sigma`` background σ, ``mean Φ(S/N_peak(phase) − detect_sigma)``. Blends with
+    stars and the field edge are not in it (they can only lower the measured value)."""
+    cfg = _config(config)
+    f = 10 ** (-0.4 * (cfg.target_mag - cfg.zero_point_mag))
+    from scipy.special import erf
+
+    ph = (np.arange(8) + 0.5) / 8 - 0.5
+    px, py = np.meshgrid(ph, ph)
+    s = cfg.psf_sigma_px * np.sqrt(2)
+
+    def frac(p):  # flux fraction of the pixel holding the PSF centre, 1-D
+        return 0.5 * (erf((0.5 - p) / s) + erf((0.5 + p) / s))
+
+    peak = f * frac(px) * frac(py)
+    noise = np.sqrt(cfg.sky_e + cfg.read_noise_e ** 2 + peak)
+    return float(np.mean(norm.cdf(peak / noise - cfg.detect_sigma)))
+
+
+def expected_recall(config: CapstoneConfig | None = None) -> float:
+    """Expected initiation recall before the run: at least ``m = min(n, 4)`` of a burst's
+    ``n`` frames detected, each with :func:`expected_completeness` (independent frames)."""
+    from scipy.stats import binom
+
+    cfg = _config(config)
+    m = min(cfg.burst_frames, 4)
+    return float(binom.sf(m - 1, cfg.burst_frames, expected_completeness(cfg)))
+
+
+def scorecard(night: NightResult, *, same_on_cluster: bool | None = None,
+              night_wall_s: float | None = None) -> pd.DataFrame:
+    """Stage criteria stated before the run (from the configuration alone), and the verdicts.
+
+    Each row: the stage, the criterion with its expected value (computed from the settings —
+    S/N, CRLB, χ² bound, baseline — not from the run), the measured value and pass/fail.
+    """
+    cfg = night.plan.config
+    val = dict(zip(night.budget["metric"], night.budget["value"]))
+    c_exp = expected_completeness(cfg)
+    r_exp = expected_recall(cfg)
+    ray_exp = np.sqrt(2) * expected_ray_sigma_px(cfg) * cfg.pixel_scale_arcsec  # 2-D RMS ″
+    sg = night.sigma or {}
+    rows = [
+        ("extraction", f"completeness ≥ S/N expectation {c_exp:.3f} − 0.10",
+         val["target completeness (sunlit frames)"],
+         val["target completeness (sunlit frames)"] >= c_exp - 0.10),
+        ("astrometry", f"true plate error (RMS) ≤ expected target centroid error {ray_exp:.2f}″",
+         val["plate solution: true error at the objects (RMS)"],
+         val["plate solution: true error at the objects (RMS)"] <= ray_exp),
+        ("initiation", f"recall ≥ 0.9 × expected {r_exp:.3f} (≥ m of n frames detected)",
+         val["recall (object-bursts with ≥ 3 sunlit frames)"],
+         val["recall (object-bursts with ≥ 3 sunlit frames)"] >= 0.9 * r_exp),
+        ("triangulation", f"per-ray error (RMS) ≤ 1.5 × CRLB {ray_exp:.2f}″",
+         val["per-ray angle error (RMS, tracklet hits)"],
+         val["per-ray angle error (RMS, tracklet hits)"] <= 1.5 * ray_exp),
+        ("triangulation", "RMS range error within ×/÷ 1.5 of R²σ_θ/B⊥ from the measured "
+         f"in-plane ray errors ({sg.get('measured_km', np.nan):.2f} km)",
+         val["RMS range error"],
+         bool(np.isfinite(sg.get("measured_km", np.nan))
+              and 1 / 1.5 <= val["RMS range error"] / sg["measured_km"] <= 1.5)),
+        ("association", "correct pairs, cluster field ≥ 1 − χ² bound "
+         f"{val['χ² bound: wrong partner inside the gate, cluster field']:.3f} − 0.05",
+         val["correct pairs, cluster field"],
+         val["correct pairs, cluster field"]
+         >= 1 - val["χ² bound: wrong partner inside the gate, cluster field"] - 0.05),
+        ("prediction", "orbit RMS through the eclipse ≤ the best sinusoid predictor on the same "
+         "catalogue-correlated tracklets",
+         val["orbit (catalogue, both stations): RMS error through the eclipse"],
+         val["orbit (catalogue, both stations): RMS error through the eclipse"]
+         <= min(val[f"{m} (catalogue): RMS error through the eclipse"] for m in PREDICTORS)),
+    ]
+    if night_wall_s is not None:
+        rows.append(("runtime", "whole night ≤ 120 s on this machine", night_wall_s,
+                     night_wall_s <= 120.0))
+    if same_on_cluster is not None:
+        rows.append(("runtime", "serial == Dask LocalCluster (identical budget)",
+                     float(same_on_cluster), bool(same_on_cluster)))
+    return pd.DataFrame(rows, columns=["stage", "criterion (stated before the run)",
+                                       "measured", "pass"])
 
 
 #: Sky levels (e⁻/px) of the noise sweep behind the widget.

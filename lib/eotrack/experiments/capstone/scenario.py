@@ -28,8 +28,9 @@ from eotrack.astro import (
 from eotrack.geometry import PinholeCamera
 from eotrack.validation import check_int, check_positive
 
-__all__ = ["ARCSEC_PER_RAD", "EARTH_RATE_RAD_S", "Burst", "CapstoneConfig", "NightPlan",
-           "StationSpec", "camera_matrix", "make_plan", "with_changes"]
+__all__ = ["ARCSEC_PER_RAD", "DEFAULT_CLUSTER", "EARTH_RATE_RAD_S", "Burst", "CapstoneConfig",
+           "ClusterMember", "NightPlan", "StationSpec", "camera_matrix", "make_plan",
+           "member_satellite", "with_changes"]
 
 ARCSEC_PER_RAD = 180.0 / np.pi * 3600.0
 #: Earth's rotation rate (rad/s) — the sidereal drift of the stars in a GEO-staring mount.
@@ -50,6 +51,59 @@ class StationSpec:
         return Station(self.lat_deg, self.lon_deg, self.height_m, self.name)
 
 
+@dataclass(frozen=True)
+class ClusterMember:
+    """An object co-located with a real GEO satellite: its TLE with offset elements.
+
+    The verification TLEs hold no co-located satellites, so a cluster is made from a real TLE
+    (``parent``) by offsetting its mean anomaly, right ascension of the ascending node and
+    inclination (degrees). For a near-circular, near-equatorial orbit a mean-anomaly (or node)
+    offset of Δ moves the object Δ along the GEO belt as seen from the geocentre; an
+    inclination offset adds a daily north–south oscillation of that amplitude.
+    """
+
+    parent: int
+    d_mean_anomaly_deg: float = 0.0
+    d_raan_deg: float = 0.0
+    d_incl_deg: float = 0.0
+
+    def __post_init__(self) -> None:
+        check_int(self.parent, "parent", min_value=1)
+        for name in ("d_mean_anomaly_deg", "d_raan_deg", "d_incl_deg"):
+            v = getattr(self, name)
+            if not (isinstance(v, (int, float)) and np.isfinite(v) and abs(v) < 10.0):
+                raise ValueError(f"{name} must be a finite offset below 10° (a co-located "
+                                 f"object), got {v!r}")
+
+    @property
+    def name(self) -> str:
+        """Label: the parent's id and the offsets, e.g. ``28626+0.12M``."""
+        parts = [f"{v:+.3g}{k}" for v, k in ((self.d_mean_anomaly_deg, "M"),
+                                             (self.d_raan_deg, "Ω"), (self.d_incl_deg, "i"))
+                 if v != 0]
+        return f"{self.parent}" + ("".join(parts) or "+0M")
+
+
+def member_satellite(member: ClusterMember):
+    """The SGP4 record of a :class:`ClusterMember` (the parent's elements plus the offsets)."""
+    from sgp4.api import WGS72, Satrec
+
+    if not isinstance(member, ClusterMember):
+        raise TypeError(f"member must be a ClusterMember, got {type(member).__name__}")
+    s = satellite(member.parent)
+    m = Satrec()
+    m.sgp4init(WGS72, "i", s.satnum, s.jdsatepoch + s.jdsatepochF - 2433281.5, s.bstar,
+               s.ndot, s.nddot, s.ecco, s.argpo, s.inclo + np.radians(member.d_incl_deg),
+               s.mo + np.radians(member.d_mean_anomaly_deg), s.no_kozai,
+               s.nodeo + np.radians(member.d_raan_deg))
+    return m
+
+
+#: Two objects co-located with XM-3 (28626, near 85° W): 0.12° east of it along the belt, and
+#: 0.1° west of it with 0.06° more inclination — all three in one field, ≈ 30 px apart.
+DEFAULT_CLUSTER = (ClusterMember(28626, d_mean_anomaly_deg=0.12),
+                   ClusterMember(28626, d_mean_anomaly_deg=-0.10, d_incl_deg=0.06))
+
 #: Socorro, New Mexico (the LINEAR GEODSS-type site) and Haleakalā, Maui — ≈ 4,900 km apart.
 DEFAULT_STATIONS = (StationSpec("Socorro NM", 33.82, -106.66, 1510.0),
                     StationSpec("Haleakala HI", 20.71, -156.26, 3050.0))
@@ -63,7 +117,12 @@ class CapstoneConfig:
     ----------
     norad_ids
         Objects (sgp4 verification TLEs): 25954 AMC-4 and 28626 XM-3 (station-kept GEO) and
-        14128 (an old GEO satellite drifting with 11.4° inclination).
+        14128 (an old GEO satellite drifting with 11.4° inclination). Each is the centre of
+        its own field.
+    cluster
+        Co-located objects (:class:`ClusterMember`) made from one of ``norad_ids``: they
+        share their parent's field, so one burst sees several objects a few tenths of a degree
+        apart (the association's hard case).
     stations
         The two stations.
     night_start_utc, night_hours
@@ -82,19 +141,31 @@ class CapstoneConfig:
     target_mag
         Brightness of a sunlit target (G-band-like magnitude); half as bright in penumbra,
         dark in umbra.
-    star_limit_mag, catalogue_mag
-        Faintest star rendered; faintest catalogue star used for matching (the Gaia extract
-        is complete to G ≈ 10; fainter stars are synthetic and uncatalogued).
+    star_limit_mag, catalogue_mag, astrometry_mag
+        Faintest star rendered; faintest star of the real Gaia extract (complete to G ≈ 10;
+        fainter stars are synthetic, following its count slope); faintest star in the chain's
+        catalogue. A 1° field at high galactic latitude holds only ≈ 5 stars to G = 10 — too
+        few for a plate solution — so the synthetic stars to ``astrometry_mag`` are listed in
+        the catalogue too, standing in for the full Gaia DR3 (complete to G ≈ 20) that a real
+        station would use; the fainter synthetic stars stay uncatalogued (only their motion
+        marks them as stars).
     min_elevation_deg, sun_max_alt_deg
         Observing limits.
-    pointing_error_arcsec
-        The mount points at the TLE prediction with a deterministic offset up to this size,
-        so that targets are not always at the frame centre.
+    pointing_error_arcsec, roll_error_deg
+        The mount is commanded to the field object's TLE prediction and *believes* it points
+        there; its true attitude is off by a deterministic offset up to ``pointing_error_arcsec``
+        per axis and a roll up to ``roll_error_deg``. The renderer uses the true attitude; the
+        chain gets only the believed one and solves the plate from the stars.
+    cloud_frames, cloud_transmission
+        Frames ``(station, field, visit, frame)`` behind a thick cloud that passes only
+        ``cloud_transmission`` of the light: too few stars for a plate solution (bad input the
+        chain must survive; one by default).
     seed
         Root seed of the night.
     """
 
     norad_ids: tuple[int, ...] = (25954, 28626, 14128)
+    cluster: tuple[ClusterMember, ...] = DEFAULT_CLUSTER
     stations: tuple[StationSpec, StationSpec] = DEFAULT_STATIONS
     night_start_utc: str = "2006-03-25T00:30:00"
     night_hours: float = 16.0
@@ -113,9 +184,13 @@ class CapstoneConfig:
     target_mag: float = 12.5
     star_limit_mag: float = 12.5
     catalogue_mag: float = 10.0
+    astrometry_mag: float = 11.5
     min_elevation_deg: float = 10.0
     sun_max_alt_deg: float = -12.0
     pointing_error_arcsec: float = 120.0
+    roll_error_deg: float = 0.1
+    cloud_frames: tuple[tuple[int, int, int, int], ...] = ((1, 0, 30, 2),)
+    cloud_transmission: float = 0.02
     seed: int = 20260330
     stage_names: tuple[str, ...] = field(default=("sky", "frames", "extraction", "initiation",
                                                   "association", "triangulation", "prediction"),
@@ -124,6 +199,23 @@ class CapstoneConfig:
     def __post_init__(self) -> None:
         if len(self.norad_ids) < 1:
             raise ValueError("norad_ids must name at least one object")
+        if not all(isinstance(m, ClusterMember) for m in self.cluster):
+            raise TypeError("cluster must be a tuple of ClusterMember")
+        for m in self.cluster:
+            if m.parent not in self.norad_ids:
+                raise ValueError(f"cluster member {m.name}: its parent {m.parent} must be one "
+                                 f"of norad_ids {self.norad_ids} (it shares the parent's field)")
+        if not self.catalogue_mag <= self.astrometry_mag <= self.star_limit_mag:
+            raise ValueError("magnitudes must satisfy catalogue_mag ≤ astrometry_mag ≤ "
+                             f"star_limit_mag, got {self.catalogue_mag}, {self.astrometry_mag}, "
+                             f"{self.star_limit_mag}")
+        check_positive(self.pointing_error_arcsec, "pointing_error_arcsec", allow_zero=True)
+        check_positive(self.roll_error_deg, "roll_error_deg", allow_zero=True)
+        if not 0.0 <= self.cloud_transmission <= 1.0:
+            raise ValueError(f"cloud_transmission must lie in [0, 1], got "
+                             f"{self.cloud_transmission}")
+        if not all(len(c) == 4 for c in self.cloud_frames):
+            raise ValueError("cloud_frames must hold (station, field, visit, frame) tuples")
         if len(self.stations) != 2 or not all(isinstance(s, StationSpec) for s in self.stations):
             raise ValueError("stations must be two StationSpec")
         check_positive(self.night_hours, "night_hours")
@@ -152,6 +244,17 @@ class CapstoneConfig:
     def focal_px(self) -> float:
         """Focal length in pixels."""
         return ARCSEC_PER_RAD / self.pixel_scale_arcsec
+
+    @property
+    def object_names(self) -> tuple[str, ...]:
+        """Labels of every object: the field objects, then the cluster members."""
+        return tuple(str(n) for n in self.norad_ids) + tuple(m.name for m in self.cluster)
+
+    @property
+    def field_of(self) -> tuple[int, ...]:
+        """Index (into ``norad_ids``) of the field each object is seen in."""
+        return tuple(range(len(self.norad_ids))) + tuple(self.norad_ids.index(m.parent)
+                                                          for m in self.cluster)
 
 
 def with_changes(config: CapstoneConfig | None = None, **changes) -> CapstoneConfig:
@@ -185,42 +288,51 @@ def _rot_z(angle: np.ndarray) -> np.ndarray:
 
 @dataclass(frozen=True)
 class Burst:
-    """One visit of one object by one station: ``n`` frames.
+    """One visit of one field by one station: ``n`` frames.
 
     Attributes
     ----------
     station, obj, visit
-        Indices into the config's stations, objects and the visit grid.
+        Indices into the config's stations, field objects (``norad_ids``) and the visit grid.
+    objs
+        Every object in the field (the field object first, then its cluster members), as
+        indices into :attr:`NightPlan.names`.
     times_s
         Mid-exposure times of the frames (s from the night's start).
     R
-        World (GCRS) → camera rotations ``(n, 3, 3)`` at mid-exposure (GEO-staring: the
-        camera turns with the Earth, so the stars drift).
+        TRUE world (GCRS) → camera rotations ``(n, 3, 3)`` at mid-exposure (GEO-staring: the
+        camera turns with the Earth, so the stars drift). For rendering and scoring only.
     R_end
-        The same at the end of each exposure (for the star trails).
+        The same at the end of each exposure (for the star trails; rendering only).
+    R_believed
+        The mount's BELIEVED attitude ``(n, 3, 3)``: the commanded pointing at the field
+        object's TLE prediction. The true attitude is this rotated by the mount error. The
+        chain starts its plate solution from it.
     c_km
         Station GCRS positions ``(n, 3)``.
     target_xy
-        True target pixel position per frame ``(n, 2)``.
+        True pixel position of each field object per frame ``(n_objs, n, 2)``.
     target_flux
-        Target electrons per frame ``(n,)`` (0 in umbra).
+        Electrons per frame ``(n_objs, n)`` (0 in umbra).
     target_gcrs_km
-        True target position per frame ``(n, 3)``.
+        True object positions ``(n_objs, n, 3)``.
     """
 
     station: int
     obj: int
     visit: int
+    objs: tuple[int, ...]
     times_s: np.ndarray
     R: np.ndarray
     R_end: np.ndarray
+    R_believed: np.ndarray
     c_km: np.ndarray
     target_xy: np.ndarray
     target_flux: np.ndarray
     target_gcrs_km: np.ndarray
 
     def camera(self, k: int, K: np.ndarray, size: int) -> PinholeCamera:
-        """The camera of frame ``k``."""
+        """The TRUE camera of frame ``k`` (rendering and scoring only)."""
         return PinholeCamera(K, self.R[k], self.c_km[k], (size, size))
 
 
@@ -246,9 +358,9 @@ class NightPlan:
         A fine (1-min) truth grid: times, shadow states ``(n_obj, n)``, object GCRS positions
         ``(n_obj, n, 3)`` and station GCRS positions ``(n_st, n, 3)``.
     bursts
-        Every burst to observe (station dark, object above the elevation limit).
+        Every burst to observe (station dark, field object above the elevation limit).
     names
-        Object labels.
+        Object labels (field objects, then cluster members).
     """
 
     config: CapstoneConfig
@@ -307,7 +419,7 @@ def _plan_cached(cfg: CapstoneConfig) -> NightPlan:
     stations = [s.station() for s in cfg.stations]
     st_km = np.stack([s.gcrs_km(tg) for s in stations])
     sun = sun_position_gcrs(tg)
-    sats = [satellite(n) for n in cfg.norad_ids]
+    sats = [satellite(n) for n in cfg.norad_ids] + [member_satellite(m) for m in cfg.cluster]
     obj_km = np.stack([teme_to_gcrs(propagate_teme(s, tg)[0], tg) for s in sats])
     shadow_g = np.stack([earth_shadow(r, sun) for r in obj_km])
 
@@ -334,9 +446,12 @@ def _plan_cached(cfg: CapstoneConfig) -> NightPlan:
     K = camera_matrix(cfg)
     f = cfg.focal_px
     bursts = []
-    offs_rng = np.random.default_rng(cfg.seed)  # deterministic pointing offsets
-    n_st, n_ob = len(stations), len(sats)
-    offsets = offs_rng.uniform(-1, 1, (n_st, n_ob, n_vis, 2)) * cfg.pointing_error_arcsec / 206265
+    offs_rng = np.random.default_rng(cfg.seed)  # deterministic mount errors
+    n_st, n_fld = len(stations), len(cfg.norad_ids)
+    offsets = offs_rng.uniform(-1, 1, (n_st, n_fld, n_vis, 2)) * cfg.pointing_error_arcsec \
+        / ARCSEC_PER_RAD
+    rolls = np.radians(offs_rng.uniform(-1, 1, (n_st, n_fld, n_vis)) * cfg.roll_error_deg)
+    members = [[o for o, fo in enumerate(cfg.field_of) if fo == fld] for fld in range(n_fld)]
     k = np.arange(cfg.burst_frames)
     for j, tv in enumerate(visit_s):
         t_mid = tv + k * cfg.frame_interval_s
@@ -345,23 +460,29 @@ def _plan_cached(cfg: CapstoneConfig) -> NightPlan:
             if not dark[s, j]:
                 continue
             c_mid = at(t_mid, st_km[s])
-            for o in range(n_ob):
-                if elev[s, o, j] <= cfg.min_elevation_deg:
+            spin_mid = np.transpose(_rot_z(EARTH_RATE_RAD_S * (t_mid - t_mid[0])), (0, 2, 1))
+            spin_end = np.transpose(_rot_z(EARTH_RATE_RAD_S * (t_end - t_mid[0])), (0, 2, 1))
+            for fld in range(n_fld):
+                if elev[s, fld, j] <= cfg.min_elevation_deg:
                     continue
-                r_mid = at(t_mid, obj_km[o])
-                d0 = r_mid[0] - c_mid[0]
-                R0 = _look_at(d0)
-                # pointing offset: rotate the boresight slightly in the camera's x/y
-                b = R0.T @ np.array([offsets[s, o, j, 0], offsets[s, o, j, 1], 1.0])
-                R0 = _look_at(b)
+                objs = members[fld]
+                r_mid = np.stack([at(t_mid, obj_km[o]) for o in objs])
+                # the mount is commanded to (and believes it points at) the TLE prediction
+                Rb0 = _look_at(r_mid[0, 0] - c_mid[0])
+                # its true attitude: off by a small rotation in x/y and a roll about z
+                bore = Rb0.T @ np.array([offsets[s, fld, j, 0], offsets[s, fld, j, 1], 1.0])
+                R0 = _rot_z(np.array(rolls[s, fld, j])) @ _look_at(bore)
                 # GEO staring: camera fixed to the Earth → rotates about z with the Earth
-                R_mid = R0 @ np.transpose(_rot_z(EARTH_RATE_RAD_S * (t_mid - t_mid[0])), (0, 2, 1))
-                R_end = R0 @ np.transpose(_rot_z(EARTH_RATE_RAD_S * (t_end - t_mid[0])), (0, 2, 1))
-                dcam = np.einsum("kij,kj->ki", R_mid, r_mid - c_mid)
-                xy = f * dcam[:, :2] / dcam[:, 2:3] + K[0, 2]
-                sh = np.round(np.interp(t_mid, grid_s, shadow_g[o])).astype(int)
+                R_mid = R0 @ spin_mid
+                R_end = R0 @ spin_end
+                R_bel = Rb0 @ spin_mid
+                dcam = np.einsum("kij,okj->oki", R_mid, r_mid - c_mid[None])
+                xy = f * dcam[..., :2] / dcam[..., 2:3] + K[0, 2]
+                sh = np.stack([np.round(np.interp(t_mid, grid_s, shadow_g[o])).astype(int)
+                               for o in objs])
                 flux = 10 ** (-0.4 * (cfg.target_mag - cfg.zero_point_mag)) * \
                     np.where(sh == UMBRA, 0.0, np.where(sh == PENUMBRA, 0.5, 1.0))
-                bursts.append(Burst(s, o, j, t_mid, R_mid, R_end, c_mid, xy, flux, r_mid))
+                bursts.append(Burst(s, fld, j, tuple(objs), t_mid, R_mid, R_end, R_bel, c_mid,
+                                    xy, flux, r_mid))
     return NightPlan(cfg, t0, visit_s, dark, elev, shadow, grid_s, shadow_g, obj_km, st_km,
-                     tuple(bursts), tuple(str(n) for n in cfg.norad_ids))
+                     tuple(bursts), cfg.object_names)
