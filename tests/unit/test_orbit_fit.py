@@ -155,8 +155,10 @@ def test_bad_inputs():
         propagate_state(np.ones(3) * 7000, np.ones(3), t, dynamics="sgp4")
     with pytest.raises(ValueError, match="r0_km"):
         propagate_state(np.ones(2), np.ones(3), t)
-    with pytest.raises(ValueError, match="t_s must be strictly increasing"):
-        fit_orbit(np.array([0.0, 0.0, 1.0]), np.zeros(3), np.zeros(3), s)
+    with pytest.raises(ValueError, match="t_s must be non-decreasing"):
+        fit_orbit(np.array([0.0, 2.0, 1.0]), np.zeros(3), np.zeros(3), s)
+    with pytest.raises(ValueError, match="same site"):
+        fit_orbit(np.array([0.0, 0.0, 1.0]), np.zeros(3), np.zeros(3), np.repeat(s[:1], 3, 0))
     with pytest.raises(ValueError, match="loss must be one of"):
         fit_orbit(t, np.zeros(3), np.zeros(3), s, loss="tukey")
     with pytest.raises(ValueError, match="sigma_arcsec"):
@@ -244,3 +246,28 @@ def test_unit_errors_are_named():
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         fit_orbit(t, ra, dec, site)
+
+
+@pytest.mark.parametrize("dynamics", ["twobody", "j2"])
+def test_two_stations_at_the_same_instants(dynamics):
+    """Two sites observing at the same times (equal t_s, different site_km) fit as well as one
+    site observing twice as often; the J2 propagator handles the repeated times."""
+    rng = np.random.default_rng(11)
+    r0, v0 = state(*MEO)
+    t1 = np.arange(0.0, 3600.0, 120.0)
+    t = np.repeat(t1, 2)
+    site = np.empty((len(t), 3))
+    site[0::2], site[1::2] = station(t1), station(t1, lat_deg=35.0, lon0_deg=-60.0)
+    pos = propagate_state(r0, v0, t, dynamics=dynamics)
+    assert np.allclose(pos[0::2], pos[1::2])
+    ra, dec = angles_from_positions(pos, site)
+    sig = 1.0
+    ra_o = ra + rng.normal(0, sig, len(t)) / 3600 / np.cos(np.radians(dec))
+    dec_o = dec + rng.normal(0, sig, len(t)) / 3600
+    fit = fit_orbit(t, ra_o, dec_o, site, sigma_arcsec=sig, dynamics=dynamics)
+    assert fit.success and fit.inliers.all()
+    tp = t1[-1] + np.array([600.0, 1800.0])
+    ra_p, dec_p = fit.predict(tp, station(tp))
+    ra_t, dec_t = angles_from_positions(propagate_state(r0, v0, tp), station(tp))
+    err = max(np.abs((ra_p - ra_t + 180) % 360 - 180).max(), np.abs(dec_p - dec_t).max()) * 3600
+    assert err < 30 * sig

@@ -186,16 +186,15 @@ def propagate_state(r0_km: np.ndarray, v0_km_s: np.ndarray, dt_s: np.ndarray, *,
         if not side.any():
             continue
         tt = dt[side]
-        order = np.argsort(tt) if tt[0] >= 0 else np.argsort(-tt)
-        te = tt[order]
+        # solve_ivp wants strictly monotonic t_eval: integrate to the distinct times (two
+        # stations observe at the same instants), then copy each back to its duplicates
+        mag, inv = np.unique(np.abs(tt), return_inverse=True)
+        te = np.sign(tt[0]) * mag if tt[0] < 0 else mag
         sol = solve_ivp(_j2_rhs, (0.0, float(te[-1]) if te[-1] != 0 else 1e-9), y0,
                         method="DOP853", t_eval=te, rtol=rtol, atol=1e-9, args=(float(mu),))
         if not sol.success:  # e.g. a trial state inside the Earth (fit_orbit catches this)
             raise RuntimeError(f"J2 propagation failed: {sol.message}")
-        pos = np.empty((len(te), 3))
-        pos[:] = sol.y[:3].T
-        idx = np.flatnonzero(side)[order]
-        out[idx] = pos
+        out[np.flatnonzero(side)] = sol.y[:3].T[inv.ravel()]
     return out
 
 
@@ -375,7 +374,8 @@ def fit_orbit(t_s: np.ndarray, ra_deg: np.ndarray, dec_deg: np.ndarray, site_km:
     Parameters
     ----------
     t_s
-        Observation times (s), ``(n,)``, n ≥ 3.
+        Observation times (s), ``(n,)``, n ≥ 3, non-decreasing: equal times are allowed from
+        different stations (two sites observing at the same instants), not from one site.
     ra_deg, dec_deg
         Observed topocentric right ascension and declination (degrees).
     site_km
@@ -423,11 +423,17 @@ def fit_orbit(t_s: np.ndarray, ra_deg: np.ndarray, dec_deg: np.ndarray, site_km:
     n = len(t)
     if n < 3:
         raise ValueError(f"t_s needs at least 3 observations, got {n}")
-    if np.any(np.diff(t) <= 0):
-        raise ValueError("t_s must be strictly increasing")
+    if np.any(np.diff(t) < 0):
+        raise ValueError("t_s must be non-decreasing (sort the observations by time)")
     ra = as_finite_array(ra_deg, "ra_deg", shape=(n,))
     dec = as_finite_array(dec_deg, "dec_deg", shape=(n,))
     site = as_finite_array(site_km, "site_km", shape=(n, 3))
+    same_t = np.flatnonzero(np.diff(t) == 0)
+    dup = same_t[np.all(np.abs(site[same_t] - site[same_t + 1]) < 1e-6, axis=1)]
+    if dup.size:
+        raise ValueError(f"t_s has {dup.size} observation(s) at the time of the previous one "
+                         f"from the same site (first at t_s[{dup[0] + 1}] = {t[dup[0] + 1]:g}): "
+                         "equal times are allowed only from different stations")
     site_r = float(np.median(np.linalg.norm(site, axis=1)))
     if site_r > 1.0e5:
         raise ValueError(f"site_km must be in km: the median station distance is {site_r:.3g}, "
