@@ -102,3 +102,18 @@ def test_siap_with_nothing_to_score():
     assert np.isnan(c) and s == 0.0
     assert np.isnan(siap_reference([], [np.zeros((0, 2))] * 3, threshold=5.0, width=100.0,
                                    frames_eval=range(3))["completeness"])
+
+
+def test_initiation_metrics_one_scored_frame_and_ragged_truth():
+    """One scored frame (a burst that lost frames) gives SIAP by the hand count instead of
+    Stone Soup's time-range error; per-frame truth arrays of different lengths are refused."""
+    frames, truth, tracks = _scene()
+    last = len(frames) - 1
+    m = initiation_metrics(tracks, frames, truth, width=100.0, c=5.0, first_frame=last)
+    ref = siap_reference(track_states(tracks, frames), truth, threshold=5.0, width=100.0,
+                         frames_eval=[last])
+    assert m["siap completeness"] == pytest.approx(ref["completeness"], nan_ok=True)
+    assert m["siap spuriousness"] == pytest.approx(ref["spuriousness"], nan_ok=True)
+    ragged = [t if k else t[:1] for k, t in enumerate(truth)]
+    with pytest.raises(ValueError, match="same number of rows"):
+        initiation_metrics(tracks, frames, ragged, width=100.0)

@@ -280,6 +280,11 @@ def initiation_metrics(tracks: Sequence[Track], frames: Sequence,
     if not isinstance(first_frame, (int, np.integer)) or not 0 <= first_frame < len(fr):
         raise ValueError(f"first_frame must be an integer in [0, {len(fr)}), got "
                          f"{first_frame!r}")
+    rows = {np.asarray(t, float).reshape(-1, 2).shape[0] for t in truth_xy}
+    if len(rows) > 1:
+        raise ValueError("truth_xy must give every object at every frame (the same number of "
+                         f"rows per frame, got {sorted(rows)}): put an absent object outside "
+                         "the field")
     pos = track_states(tracks, fr)
     present = _truth_present(truth_xy, w)
     ks = list(range(int(first_frame), len(fr)))
@@ -292,7 +297,12 @@ def initiation_metrics(tracks: Sequence[Track], frames: Sequence,
             acc[key] += g[key]
     n = len(ks)
     times = np.array([f.time_s for f in fr])
-    comp, spur = _siap_stonesoup(pos, truth_xy, times, threshold=c, width=w, frames_eval=ks)
+    if len(ks) > 1:
+        comp, spur = _siap_stonesoup(pos, truth_xy, times, threshold=c, width=w,
+                                     frames_eval=ks)
+    else:  # Stone Soup's SIAP needs a time range: at one time, the hand count (same rule)
+        ref = siap_reference(pos, truth_xy, threshold=c, width=w, frames_eval=ks)
+        comp, spur = ref["completeness"], ref["spuriousness"]
     return {"gospa": acc["distance"] / n, "gospa localisation": acc["localisation"] / n,
             "gospa missed": acc["missed"] / n, "gospa false": acc["false"] / n,
             "siap completeness": comp, "siap spuriousness": spur}
