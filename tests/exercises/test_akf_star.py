@@ -123,3 +123,20 @@ def test_bad_answer_raises(ex):
     value, exc = BAD[ex]
     with pytest.raises(exc):
         check(ex, value)
+
+
+@pytest.mark.parametrize("written", ["d", "(d)", "d)", "[d]", "D.", " ( d ) "])
+def test_exercise6_accepts_the_option_as_labelled(written):
+    # the question labels its options "(a)" … "(d)": a student who copies the label is judged
+    assert check("akf_star.6", written)
+
+
+@pytest.mark.parametrize("written", ["(a)", "b)", "[c]"])
+def test_exercise6_labelled_wrong_options_fail(written):
+    assert not check("akf_star.6", written)
+
+
+@pytest.mark.parametrize("written", ["(e)", "(dd)", "", "d or a"])
+def test_exercise6_not_an_option_raises(written):
+    with pytest.raises(ValueError, match="expected one of"):
+        check("akf_star.6", written)

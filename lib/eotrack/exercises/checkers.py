@@ -8,6 +8,7 @@ where the answer is a definition (a choice, a formula's exponent).
 from __future__ import annotations
 
 import copy
+import re
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from typing import Any
@@ -257,7 +258,12 @@ class Choice(Checker):
         norm = [str(o).strip().lower() for o in self.options]
         key = str(answer).strip().lower()
         if key not in norm:
-            raise ValueError(f"expected one of {list(self.options)}, got {answer!r}")
+            # an option written as it is labelled in the question: "(d)", "d)", "[d]", "d."
+            bare = re.sub(r"^[(\[]\s*(.*?)\s*[)\]]$", r"\1", key)
+            bare = re.sub(r"^(.*?)\s*[).:]$", r"\1", bare).strip()
+            if bare not in norm:
+                raise ValueError(f"expected one of {list(self.options)}, got {answer!r}")
+            key = bare
         return self.options[norm.index(key)]
 
     def judge(self, answer: Any) -> bool:
