@@ -5,14 +5,15 @@ STAMP   := .venv/.installed-stamp
 NB_SAN  := tests/notebooks/sanitize.cfg
 
 .PHONY: setup repro repro-quick repro-stability test check lint unit papers figures notebooks \
-	browser ci lab bench mutation execute clean book
+	browser ci lab bench mutation execute clean book durations
 
 # pytest-xdist workers for the test targets (one per core of the 2-core reference machine);
-# `make test JOBS=1` runs serially. Items are spread by group (--dist loadfile, groups set in
-# ./conftest.py): a file's items stay together (nbval runs a notebook's cells in order in one
-# kernel), and a paper's tests share a worker with its figure lint (one quick run of the paper).
+# `make test JOBS=1` runs serially. Items are spread by file (--dist loadfile): a file's items
+# stay together (nbval runs a notebook's cells in order in one kernel). Files are handed out
+# longest first (./conftest.py orders them by tests/file_durations.json, `make durations`;
+# --no-loadscope-reorder keeps that order instead of xdist's "most items first").
 JOBS    ?= 2
-XDIST   := $(if $(filter-out 1,$(JOBS)),-n $(JOBS) --dist loadfile,)
+XDIST   := $(if $(filter-out 1,$(JOBS)),-n $(JOBS) --dist loadfile --no-loadscope-reorder,)
 NBVAL   := --nbval-lax --nbval-sanitize-with $(NB_SAN) --nbval-cell-timeout=600
 K       ?= 5
 
@@ -53,6 +54,11 @@ test: setup lint check
 check: setup
 	$(PY) -m pytest -q -p no:randomly $(XDIST) tests/unit tests/exercises tests/figures \
 		tests/papers notebooks $(NBVAL)
+
+## re-measure the seconds per test file that order `make test` (writes tests/file_durations.json)
+durations: setup
+	EOTRACK_WRITE_DURATIONS=1 $(PY) -m pytest -q -p no:randomly $(XDIST) tests/unit \
+		tests/exercises tests/figures tests/papers notebooks $(NBVAL)
 
 ## CI's checks on this machine: make test, the browser tests, then nbval with AVX-512 off
 ci: setup

@@ -1,0 +1,67 @@
+"""Order of the test files for ``make test``: longest first.
+
+``make test`` runs one pytest session over two pytest-xdist workers with ``--dist loadfile``
+(a file's items stay on one worker: nbval runs a notebook's cells in order in one kernel).
+Which worker ends last decides the wall time, so the files are handed out longest first
+(``--no-loadscope-reorder`` keeps this order instead of xdist's "most items first").
+
+The seconds per file come from ``tests/file_durations.json``, written by a run with
+``EOTRACK_WRITE_DURATIONS=1`` (``make durations``): a measurement of this machine, committed, so a
+fresh clone orders its first run the same way. A file it does not list counts as 1 s. The order
+changes only the schedule, never which tests run.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+from collections import defaultdict
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parent
+DURATIONS = ROOT / "tests" / "file_durations.json"
+_seconds: dict[str, float] = defaultdict(float)
+
+
+def _file_of(item: pytest.Item) -> str:
+    return Path(str(item.fspath)).resolve().relative_to(ROOT).as_posix()
+
+
+def _known() -> dict[str, float]:
+    try:
+        data = json.loads(DURATIONS.read_text())
+    except (OSError, ValueError):
+        return {}
+    return {k: float(v) for k, v in data.get("seconds", {}).items()}
+
+
+def pytest_collection_modifyitems(session: pytest.Session, config: pytest.Config,
+                                  items: list[pytest.Item]) -> None:
+    known = _known()
+    if not known:
+        return
+    first_seen: dict[str, int] = {}
+    for i, item in enumerate(items):
+        first_seen.setdefault(_file_of(item), i)
+    # stable within a file (cell order matters to nbval); files by measured time, longest first
+    items.sort(key=lambda it: (-known.get(_file_of(it), 1.0), first_seen[_file_of(it)]))
+
+
+def pytest_runtest_logreport(report: pytest.TestReport) -> None:
+    if os.environ.get("EOTRACK_WRITE_DURATIONS") == "1":
+        _seconds[report.nodeid.split("::", 1)[0]] += report.duration
+
+
+def pytest_sessionfinish(session: pytest.Session, exitstatus: int) -> None:
+    if os.environ.get("EOTRACK_WRITE_DURATIONS") != "1" or not _seconds:
+        return
+    if hasattr(session.config, "workerinput"):  # xdist workers: the controller writes
+        return
+    old = _known()
+    old.update({k: round(v, 1) for k, v in _seconds.items()})
+    DURATIONS.write_text(json.dumps(
+        {"about": "seconds per test file on the 2-core reference machine (written by "
+                  "`make durations`; used only to hand out the longest files first)",
+         "seconds": dict(sorted(old.items(), key=lambda kv: -kv[1]))}, indent=1) + "\n")
