@@ -43,11 +43,9 @@ import numpy as np
 from eotrack.experiments import ransac_crlb_pose as E
 from eotrack.montecarlo import TrialRunner
 from eotrack.pose import (
-    RansacConfig,
     ippe_poses,
     pose_crlb,
     random_pnp_scene,
-    ransac_pose,
     ransac_pose_dlt,
     ransac_pose_opencv,
     reprojection_errors,
@@ -160,55 +158,19 @@ def family_benchmark(n_scenes: int = N_FAMILY, seed: int = 2026, scenes=None,
     if scenes is None:
         rng = np.random.default_rng(seed)
         scenes = [random_pnp_scene(rng) for _ in range(n_scenes)]
-    n_scenes = len(scenes)
-
-    def ours(s, i):
-        r = ransac_pose(s.points, s.pixels, s.K, np.random.default_rng(i))
-        return (r.R, r.t) if r.success else None
-
-    def paper_chain(s, i):
-        r = ransac_pose_dlt(s.points, s.pixels, s.K, np.random.default_rng(i),
-                            RansacConfig.paper(inlier_threshold_px=4.0, min_inlier_ratio=0.6))
-        return (r.R, r.t) if r.success else None
-
-    def opencv(s, i):
-        ok, rv, tv, idx = cv2.solvePnPRansac(s.points, s.pixels, s.K, None,
-                                             reprojectionError=cv_threshold)
-        if not ok or idx is None:
-            return None
-        rv, tv = cv2.solvePnPRefineLM(s.points[idx.ravel()], s.pixels[idx.ravel()], s.K, None,
-                                      rv, tv)
-        return cv2.Rodrigues(rv)[0], tv.ravel()
-
-    methods = [("ours (ransac_pose, defaults)", ours)]
-    if paper:
-        methods.append(("paper chain (6-point DLT)", paper_chain))
-    methods.append(("cv2.solvePnPRansac + LM", opencv))
-    out = {}
-    for name, fn in methods:
-        errs, c0 = [], time.process_time()
-        for i, s in enumerate(scenes):
-            r = fn(s, i)
-            errs.append((np.inf, np.inf) if r is None else
-                        (rotation_error_deg(r[0], s.R), float(np.linalg.norm(r[1] - s.t))))
-        out[name] = (np.array(errs), 1e3 * (time.process_time() - c0) / n_scenes)
-    return out
+    methods = E.FAMILY_METHODS if paper else (E.OURS, E.OPENCV)
+    return E.pose_family_comparison(scenes, cv_threshold=cv_threshold, methods=methods)
 
 
 def _print_family(title: str, fam: dict) -> None:
-    ref_err, ref_ms = fam["cv2.solvePnPRansac + LM"]
+    table = E.family_table(fam)
     print(title)
-    print(f"{'method':32s} {'found':>6s} {'med rot deg':>12s} {'× cv':>6s} {'med pos m':>10s} "
-          f"{'× cv':>6s} {'ms':>7s} {'× cv':>6s}")
-    for k, (e, ms) in fam.items():
-        found = np.mean(e[:, 0] < 5.0)
-        mr, mp = np.median(e[:, 0]), np.median(e[:, 1])
-        print(f"{k:32s} {found:6.3f} {mr:12.4f} {mr / np.median(ref_err[:, 0]):6.3f} "
-              f"{mp:10.4f} {mp / np.median(ref_err[:, 1]):6.3f} {ms:7.3f} {ms / ref_ms:6.2f}")
-    e, ms = fam["ours (ransac_pose, defaults)"]
-    ok = (np.mean(e[:, 0] < 5.0) >= 0.95
-          and np.median(e[:, 0]) <= np.median(ref_err[:, 0])
-          and np.median(e[:, 1]) <= np.median(ref_err[:, 1]) and ms <= 3 * ref_ms)
+    print(table.to_string(float_format=lambda v: f"{v:.4g}"))
+    ours, cv = table.loc[E.OURS], table.loc[E.OPENCV]
+    ok = (ours["found (< 5°)"] >= 0.95 * ours["of"]
+          and ours["median rotation error (deg)"] <= cv["median rotation error (deg)"]
+          and ours["median position error (m)"] <= cv["median position error (m)"]
+          and ours["CPU ms per image"] <= 3 * cv["CPU ms per image"])
     print(f"  targets (ours): found ≥ 0.95, rot and pos ≤ 1.0× OpenCV, time ≤ 3× OpenCV: "
           f"{'MET' if ok else 'NOT MET'}\n")
 

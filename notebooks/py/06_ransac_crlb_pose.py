@@ -702,53 +702,19 @@ print(f"{len(wst)} runs; kept fraction: unit weights {wst['frac_unit'].mean():.3
 # **In-sample:** $k = 4$ was chosen on this family (benchmark seed), so the first table is the
 # tuning family; the second is out of family (noisier, 20 points / 50 % mismatches at
 # f = 400 px, millimetres). OpenCV: `solvePnPRansac` + `solvePnPRefineLM`, 8 px (in mm for the
-# mm row).
+# mm row). Both tables come from `E.pose_family_comparison` and `E.family_table`, the call the
+# benchmark makes.
 
 # %%
-import cv2
-from eotrack.pose import random_pnp_scene, ransac_pose
+from eotrack.pose import random_pnp_scene
 
 rng_f = np.random.default_rng(606)
 family = [random_pnp_scene(rng_f) for _ in range(40)]
-
-
-def _cv_pose(s, i, thr=8.0):
-    okc, rv, tv, idx = cv2.solvePnPRansac(s.points, s.pixels, s.K, None,
-                                          reprojectionError=thr)
-    if not okc or idx is None:
-        return None
-    rv, tv = cv2.solvePnPRefineLM(s.points[idx.ravel()], s.pixels[idx.ravel()], s.K, None, rv,
-                                  tv)
-    return cv2.Rodrigues(rv)[0], tv.ravel()
-
-
-def _ours(s, i):
-    r = ransac_pose(s.points, s.pixels, s.K, np.random.default_rng(i))
-    return (r.R, r.t) if r.success else None
-
-
-def _paper(s, i):
-    r = ransac_pose_dlt(s.points, s.pixels, s.K, np.random.default_rng(i),
-                        RansacConfig.paper(inlier_threshold_px=4.0, min_inlier_ratio=0.6))
-    return (r.R, r.t) if r.success else None
-
-
-fam_rows = {}
-for name, fn in (("ransac_pose (defaults)", _ours), ("paper's chain (6-point DLT)", _paper),
-                 ("cv2.solvePnPRansac + LM", _cv_pose)):
-    c0 = time.process_time()
-    res_f = [fn(s, i) for i, s in enumerate(family)]
-    ms = 1e3 * (time.process_time() - c0) / len(family)
-    e = np.array([(rotation_error_deg(r[0], s.R), np.linalg.norm(r[1] - s.t)) if r else
-                  (np.inf, np.inf) for r, s in zip(res_f, family)])
-    fam_rows[name] = {"found (< 5°)": int(np.sum(e[:, 0] < 5)), "of": len(family),
-                      "median rotation error (deg)": np.median(e[:, 0]),
-                      "median position error (m)": np.median(e[:, 1]), "CPU ms per image": ms}
-fam_table = pd.DataFrame(fam_rows).T
+fam_table = E.family_table(E.pose_family_comparison(family, cv_threshold=8.0))
 fam_table
 
 # %%
-assert fam_table.loc["ransac_pose (defaults)", "found (< 5°)"] >= 0.95 * len(family)
+assert fam_table.loc[E.OURS, "found (< 5°)"] >= 0.95 * len(family)
 
 # %%
 from dataclasses import replace as _replace
@@ -761,24 +727,13 @@ held = {"σ 2–4 px": ([random_pnp_scene(rng_h, sigma_px=(2.0, 4.0)) for _ in r
              for _ in range(30)], 8.0),
         "design family in mm (5 µm pixels)": (
             [_replace(s, pixels=0.005 * s.pixels, K=_mm @ s.K) for s in family[:30]], 0.04)}
-held_rows = {}
-for fam_name, (scenes, thr_cv) in held.items():
-    for name, fn in (("ransac_pose (defaults)", _ours),
-                     ("cv2.solvePnPRansac + LM", lambda s, i, thr=thr_cv: _cv_pose(s, i, thr))):
-        res_h = [fn(s, i) for i, s in enumerate(scenes)]
-        e = np.array([(rotation_error_deg(r[0], s.R), np.linalg.norm(r[1] - s.t)) if r else
-                      (np.inf, np.inf) for r, s in zip(res_h, scenes)])
-        held_rows[(fam_name, name)] = {"found (< 5°)": int(np.sum(e[:, 0] < 5)),
-                                       "of": len(scenes),
-                                       "median rotation error (deg)": np.median(e[:, 0]),
-                                       "median position error (m)": np.median(e[:, 1])}
-held_table = pd.DataFrame(held_rows).T
+held_table = pd.concat({fam_name: E.family_table(
+    E.pose_family_comparison(scenes, cv_threshold=thr_cv, methods=(E.OURS, E.OPENCV)),
+    timing=False) for fam_name, (scenes, thr_cv) in held.items()})
 held_table
 
-# %% [markdown]
-#
 # %%
-_ours_rows = held_table.xs("ransac_pose (defaults)", level=1)
+_ours_rows = held_table.xs(E.OURS, level=1)
 assert (_ours_rows["found (< 5°)"] >= 0.9 * _ours_rows["of"]).all()
 
 # %% [markdown]

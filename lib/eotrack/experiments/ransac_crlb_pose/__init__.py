@@ -46,6 +46,14 @@ from .explore import (
     explore_selection,
     warm_explore_cache,
 )
+from .family import (
+    FAMILY_METHODS,
+    OPENCV,
+    OURS,
+    PAPER,
+    family_table,
+    pose_family_comparison,
+)
 from .figures import (
     draw_scene_3d,
     figure_errors,
@@ -88,7 +96,11 @@ from .trials import (
 __all__ = [
     "CONTRADICTED",
     "EXPLORE_RUNS",
+    "FAMILY_METHODS",
     "NOISE_UNITS",
+    "OPENCV",
+    "OURS",
+    "PAPER",
     "POOLED_STUDY_FILE",
     "READINGS",
     "SLUG",
@@ -109,6 +121,7 @@ __all__ = [
     "explore_figure",
     "explore_runs",
     "explore_selection",
+    "family_table",
     "figure_errors",
     "holm",
     "load_protocol",
@@ -126,6 +139,7 @@ __all__ = [
     "pooled_seed_runs",
     "pooled_summary",
     "pose_errors",
+    "pose_family_comparison",
     "read_pooled_study",
     "readings_table",
     "reproduce",
