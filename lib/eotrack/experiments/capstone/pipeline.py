@@ -845,8 +845,9 @@ def predict_through_eclipse(plan: NightPlan, results: list[BurstResult],
     -------
     prediction, status
         Prediction rows ``station, object, series, method, n_fit, n_wrong, eclipse_min,
-        rms_arcsec, max_arcsec`` (``n_wrong``: fitted tracklets of another or no object,
-        scoring) and the :func:`eclipse_status` of the catalogue-correlated tracklets.
+        rms_arcsec, max_arcsec, note`` (``n_wrong``: fitted tracklets of another or no object,
+        scoring; ``note``: why a fit failed, its errors then NaN) and the
+        :func:`eclipse_status` of the catalogue-correlated tracklets.
 
     Raises
     ------
@@ -878,7 +879,8 @@ def predict_through_eclipse(plan: NightPlan, results: list[BurstResult],
         return {"station": cfg.stations[s].name, "object": names[o], "series": name,
                 "method": m, "n_fit": int(n_fit), "n_wrong": int(n_wrong),
                 "eclipse_min": (t_out - t_in) / 60,
-                "rms_arcsec": float(np.sqrt(np.mean(err ** 2))), "max_arcsec": float(err.max())}
+                "rms_arcsec": float(np.sqrt(np.mean(err ** 2))), "max_arcsec": float(err.max()),
+                "note": ""}
 
     def ok_in(st, s, o):
         sel = st[(st["station"] == cfg.stations[s].name) & (st["object"] == names[o])]
@@ -901,9 +903,15 @@ def predict_through_eclipse(plan: NightPlan, results: list[BurstResult],
             before = (t < t_in) & (t >= t_in - fit_window_s)
             ra, dec = _radec_arcsec(d[before])
             for m in methods:
-                pr = fit_predict(m, t[before], ra - ra[0], tq, rng=rng, threshold=threshold_arcsec)
-                pd_ = fit_predict(m, t[before], dec - dec[0], tq, rng=rng,
-                                  threshold=threshold_arcsec)
+                try:
+                    pr = fit_predict(m, t[before], ra - ra[0], tq, rng=rng,
+                                     threshold=threshold_arcsec)
+                    pd_ = fit_predict(m, t[before], dec - dec[0], tq, rng=rng,
+                                      threshold=threshold_arcsec)
+                except ValueError as e:  # e.g. several objects' tracklets at the same times
+                    rows.append({**row(s, o, name, m, before.sum(), np.sum(tru[before] != o),
+                                       t_in, t_out, np.full(1, np.nan)), "note": str(e)})
+                    continue
                 ra_p = (pr + ra[0]) / ARCSEC_PER_RAD
                 de_p = (pd_ + dec[0]) / ARCSEC_PER_RAD
                 v = np.stack([np.cos(de_p) * np.cos(ra_p), np.cos(de_p) * np.sin(ra_p),
@@ -935,7 +943,10 @@ def predict_through_eclipse(plan: NightPlan, results: list[BurstResult],
         try:
             fit = fit_orbit(t, ra_d, de_d, site, sigma_arcsec=sig, loss="cauchy",
                             dynamics=orbit_dynamics)
-        except ValueError:
+        except ValueError as e:
+            for s in range(2):
+                rows.append({**row(s, o, "catalogue, both stations", "orbit", len(obs), 0,
+                                   t_in, t_out, np.full(1, np.nan)), "note": str(e)})
             continue
         tru = np.array([q[3] for q in obs])
         for s in range(2):
@@ -949,7 +960,7 @@ def predict_through_eclipse(plan: NightPlan, results: list[BurstResult],
             rows.append(row(s, o, "catalogue, both stations", "orbit", len(obs),
                             np.sum(tru != o), t_in, t_out, _truth_err(plan, o, s, tq, v)))
     cols = ["station", "object", "series", "method", "n_fit", "n_wrong", "eclipse_min",
-            "rms_arcsec", "max_arcsec"]
+            "rms_arcsec", "max_arcsec", "note"]
     return pd.DataFrame(rows, columns=cols), status
 
 
@@ -1073,11 +1084,12 @@ def error_budget(plan: NightPlan, bursts: list[BurstResult], pairs: pd.DataFrame
 
 
 def quick_config(config: CapstoneConfig | None = None) -> CapstoneConfig:
-    """The QUICK night: only the cluster field (XM-3 and its two companions), 03:20–06:50 UTC
-    around XM-3's eclipse, 15-min visits — every stage runs, in a few seconds per stage."""
+    """The QUICK night: only the cluster field (XM-3 and its two companions), 03:20–07:50 UTC
+    around XM-3's eclipse (Haleakalā joins after the umbra), 15-min visits, one clouded
+    frame — every stage runs."""
     cfg = _config(config)
     return replace(cfg, norad_ids=(28626,), night_start_utc="2006-03-25T03:20:00",
-                   night_hours=3.5, cloud_frames=((0, 0, 2, 1),))
+                   night_hours=4.5, cloud_frames=((0, 0, 2, 1),))
 
 
 def run_night(config: CapstoneConfig | None = None, *, runner: TrialRunner | None = None,
@@ -1123,7 +1135,8 @@ def run_night(config: CapstoneConfig | None = None, *, runner: TrialRunner | Non
                              for f, st, why in r.failures], columns=["frame", "stage", "reason"])
     empty_pairs = triangulate_pairs(pd.DataFrame())
     empty_pred = pd.DataFrame(columns=["station", "object", "series", "method", "n_fit",
-                                       "n_wrong", "eclipse_min", "rms_arcsec", "max_arcsec"])
+                                       "n_wrong", "eclipse_min", "rms_arcsec", "max_arcsec",
+                                       "note"])
     t = time.perf_counter()
     pairs, pred, status, sig = empty_pairs, empty_pred, pd.DataFrame(), {}
     try:

@@ -190,7 +190,7 @@ class CapstoneConfig:
     pointing_error_arcsec: float = 120.0
     roll_error_deg: float = 0.1
     cloud_frames: tuple[tuple[int, int, int, int], ...] = ((1, 0, 30, 2),)
-    cloud_transmission: float = 0.02
+    cloud_transmission: float = 0.001
     seed: int = 20260330
     stage_names: tuple[str, ...] = field(default=("sky", "frames", "extraction", "initiation",
                                                   "association", "triangulation", "prediction"),
