@@ -315,3 +315,76 @@ def test_root_seed_derives_every_generator():
     assert [c.ours for c in r1.claims] == [c.ours for c in r2.claims]
     r3 = E.reproduce(seed=4, **kw)
     assert [c.ours for c in r1.claims] != [c.ours for c in r3.claims]
+
+
+def test_repointed_scenario_keeps_visibility_and_pointing():
+    scen = E.build_scenario()
+    same = E.repointed_scenario(scen, scen.objects_km)
+    assert all(a is b for a, b in zip(same.cameras, scen.cameras))  # nothing lost: unchanged
+    t5 = np.asarray(load_claims("epipolar")["epipolar.table5"].paper["geo5_km"][-1], float)
+    X = scen.objects_km.copy()
+    X[4] = t5
+    moved = E.repointed_scenario(scen, X)
+    np.testing.assert_array_equal(moved.objects_km[4], t5)
+    seen = np.stack([c.sees(X, margin_px=5.0) for c in moved.cameras])
+    np.testing.assert_array_equal(seen, scen.visible)
+    changed = [k for k, (a, b) in enumerate(zip(scen.cameras, moved.cameras))
+               if not np.array_equal(a.R, b.R)]
+    assert changed == [2, 3]  # sensors 3 and 4 lose GEO5 at its Table 5 position
+    with pytest.raises(ValueError, match="objects_km"):
+        E.repointed_scenario(scen, X[:3])
+    with pytest.raises(ValueError, match="objects_km"):
+        E.repointed_scenario(scen, np.full_like(X, np.nan))
+    far = X.copy()
+    far[1] = -far[1]  # the other side of the Earth: no pointing keeps map 4 seeing it
+    with pytest.raises(RuntimeError, match="visibility"):
+        E.repointed_scenario(scen, far)
+
+
+def test_perturbed_scenario_is_seeded_bounded_and_keeps_visibility():
+    scen = E.build_scenario()
+    a = E.perturbed_scenario(scen, np.random.default_rng(3), max_km=15.0)
+    b = E.perturbed_scenario(scen, np.random.default_rng(3), max_km=15.0)
+    np.testing.assert_array_equal(a.objects_km, b.objects_km)
+    np.testing.assert_array_equal(a.objects_km[0], scen.objects_km[0])  # GEO1 kept
+    off = np.abs(a.objects_km - scen.objects_km)
+    assert off[1:].max() <= 15.0 and off[1:].max() > 0
+    for k, cam in enumerate(a.cameras):
+        np.testing.assert_array_equal(cam.sees(a.objects_km, margin_px=10.0), scen.visible[k])
+    with pytest.raises(TypeError):
+        E.perturbed_scenario(scen, 3)
+    with pytest.raises(ValueError):
+        E.perturbed_scenario(scen, np.random.default_rng(0), max_km=-1.0)
+    with pytest.raises(RuntimeError, match="no placement"):
+        E.perturbed_scenario(scen, np.random.default_rng(0), max_km=5e4, max_tries=3)
+
+
+def test_placement_study_columns_status_and_bad_input():
+    scen = E.build_scenario()
+    df = E.placement_study({"ours": scen}, E.ErrorConfig(), E.THRESHOLDS, 10.0, 4,
+                           runner=TrialRunner(progress=False))
+    assert list(df.index) == ["ours"]
+    assert df.loc["ours", "Table 3 status"] in {str(s) for s in Status}
+    rec = float(df.loc["ours", "objects recovered (mean)"])
+    assert 0 <= rec <= 9
+    assert float(df.loc["ours", "best in 8–12 px, correct of associated"]) >= \
+        float(df.loc["ours", "correct of associated at L = 10"]) - 1e-12
+    with pytest.raises(TypeError):
+        E.placement_study({}, E.ErrorConfig())
+    with pytest.raises(TypeError):
+        E.placement_study({"x": 3}, E.ErrorConfig(), n_draws=2)
+    with pytest.raises(ValueError, match="threshold"):
+        E.placement_study({"ours": scen}, E.ErrorConfig(), E.THRESHOLDS, 10.25, 2)
+    with pytest.raises(ValueError, match="band"):
+        E.placement_study({"ours": scen}, E.ErrorConfig(), E.THRESHOLDS, 10.0, 2,
+                          band=(30.0, 40.0))
+
+
+def test_table3_measure_matches_the_score(rep):
+    row = next(r for r in rep.claims if r.claim == "epipolar.table3")
+    m = E.table3_measure(np.array([9, 9, 8, 9]), 9)
+    assert m["all_nine_share"] == 0.75 and m["mean_recovered"] == 8.75
+    assert E.status_table3(m) in (Status.REPRODUCED, Status.PARTIAL, Status.NOT_REPRODUCED)
+    assert row.status is Status.NOT_REPRODUCED
+    with pytest.raises(ValueError):
+        E.table3_measure(np.array([]), 9)

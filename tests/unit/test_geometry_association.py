@@ -300,3 +300,30 @@ def test_p_with_an_explicit_threshold_is_refused():
     with pytest.raises(ValueError):
         associate(d, sigma_px=1.0, p=1.0)  # p outside (0, 1)
     assert associate(d, sigma_px=1.0).tolist() == associate(d, sigma_px=1.0, p=0.99).tolist()
+
+
+def test_held_out_three_view_check_rejects_pairs_meeting_behind_the_cameras():
+    """Held out (not the paper's scene): two cameras 100 m apart looking at a point 10 km away.
+    A false pair that satisfies the epipolar constraint but whose lines of sight diverge meets
+    behind the cameras; with no third view the check must still reject it (cheirality), and
+    keep the true pair."""
+    from eotrack.geometry import PinholeCamera, epipolar_distances, fundamental_from_poses
+    from eotrack.geometry.rotations import look_at
+
+    K = np.array([[1000.0, 0, 320], [0, 1000.0, 240], [0, 0, 1]])
+    X = np.array([0.0, 0.0, 10.0])
+    ca, cb = np.array([-0.05, 0, 0]), np.array([0.05, 0, 0])
+    cam_a = PinholeCamera(K, look_at(X - ca, up=(0, 1, 0)), ca, (640, 480), None)
+    cam_b = PinholeCamera(K, look_at(X - cb, up=(0, 1, 0)), cb, (640, 480), None)
+    pa = np.stack([cam_a.project(X[None])[0], [300.0, 250.0]])
+    # the image-b point of a spot 20 km *behind* camera a on pa[1]'s line of sight: the pair
+    # satisfies eq. (8), but its lines of sight meet behind both cameras
+    Xf = ca - 20.0 * cam_a.rays(pa[1:])[0]
+    uvb = K @ (cam_b.R @ (Xf - cb))
+    pb = np.stack([cam_b.project(X[None])[0], uvb[:2] / uvb[2]])
+    assert (cam_b.R @ (Xf - cb))[2] < 0
+    F = fundamental_from_poses(K, cam_a.R, ca, K, cam_b.R, cb)
+    d = epipolar_distances(F, pa, pb)
+    assert d[0, 0] < 1e-6 and d[1, 1] < 1e-6  # both pairs satisfy eq. (8)
+    keep = three_view_check(pa, pb, [[0, 0], [1, 1]], cam_a, cam_b, [], gate_px=3.0)
+    assert keep.tolist() == [True, False]

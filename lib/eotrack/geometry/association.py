@@ -243,7 +243,9 @@ def three_view_check(pts_a, pts_b, pairs, cam_a: PinholeCamera, cam_b: PinholeCa
 
     For each pair the two lines of sight are triangulated and the point projected into every
     other camera; if it falls inside that image and no detection lies within the gate, the
-    pair is inconsistent (a false association such as the paper's Fig. 4(e)).
+    pair is inconsistent (a false association such as the paper's Fig. 4(e)). A pair whose
+    lines of sight meet behind either of its own cameras (they diverge: the epipolar
+    constraint holds for such points too) is inconsistent as well, even with no other view.
 
     Two gates:
 
@@ -315,6 +317,8 @@ def three_view_check(pts_a, pts_b, pairs, cam_a: PinholeCamera, cam_b: PinholeCa
                 qa2, qb2 = (ua - step, ub) if which == 0 else (ua, ub - step)
                 shifted.append((tri(qa, qb), tri(qa2, qb2)))
     keep = np.ones(len(pr), bool)
+    for cam in (cam_a, cam_b):  # cheirality: the point must lie in front of both cameras
+        keep &= cam.project(X, return_depth=True)[1] > 0
     for cam, pts in others:
         q = as_points(pts, "others points")
         inside = cam.sees(X)

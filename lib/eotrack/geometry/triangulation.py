@@ -47,7 +47,10 @@ def closest_points_two_rays(o1, d1, o2, d2) -> tuple[np.ndarray, np.ndarray]:
     -------
     (q1, q2) : numpy.ndarray
         ``q1`` on ray 1 and ``q2`` on ray 2, each ``(..., 3)``; ``|q2 − q1|`` is the miss
-        distance and their midpoint the two-ray triangulation.
+        distance and their midpoint the two-ray triangulation. The rays are treated as full
+        lines: for diverging rays (a false pair) the closest points lie *behind* an origin,
+        ``(q1 − o1)·d1 < 0`` — check that sign (or the depth in the cameras, as
+        :func:`eotrack.geometry.three_view_check` does) before trusting the point.
 
     Raises
     ------
@@ -88,7 +91,8 @@ def triangulate_two_rays(o1, d1, o2, d2, *, return_gap: bool = False):
     Returns
     -------
     numpy.ndarray
-        Points ``(..., 3)`` (and gaps ``(...)``).
+        Points ``(..., 3)`` (and gaps ``(...)``). As in :func:`closest_points_two_rays`, the
+        rays are full lines: diverging rays give a point behind the origins, with a small gap.
 
     Raises
     ------

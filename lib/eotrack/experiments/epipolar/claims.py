@@ -13,7 +13,7 @@ import pandas as pd
 from scipy.stats import t as student_t
 
 from eotrack.geometry.triangulation import combine_estimates
-from eotrack.montecarlo import binomial_interval
+from eotrack.montecarlo import TrialRunner, binomial_interval, run_trials
 from eotrack.repro import ClaimResult, Reproduction, Status, evaluator, load_claims
 
 from .scenario import EPOCH_UTC, PAIR_LABELS, PAIRS, SLUG, TITLE, ErrorConfig, Scenario
@@ -25,7 +25,9 @@ from .trials import (
     distance_sigma_px,
     error_budget_gate,
     objects_recovered,
+    placement_trial,
     row_labels,
+    sweep_rates,
     triangulate_object,
 )
 
@@ -38,6 +40,7 @@ __all__ = [
     "fig5_table",
     "fig6_table",
     "paper_values",
+    "placement_study",
     "rules_table",
     "score",
     "status_fig3",
@@ -53,6 +56,7 @@ __all__ = [
     "table1",
     "table2_check",
     "table3",
+    "table3_measure",
     "table4",
     "table4_paired",
     "table5",
@@ -430,6 +434,69 @@ def fig4_measure(scen: Scenario, mc: MonteCarlo, *, confidence: float = 0.95) ->
             "removed_share": 1 - f_3v / f_nom if f_nom else 0.0}
 
 
+def table3_measure(recovered, n_objects: int) -> dict:
+    """Measurement of ``epipolar.table3`` from the per-draw counts of objects recovered: 95 %
+    Wilson interval of the share of draws recovering all ``n_objects``, 95 % t interval of the
+    mean number recovered."""
+    rec = np.asarray(recovered, float)
+    if rec.ndim != 1 or len(rec) == 0:
+        raise ValueError(f"recovered must be a non-empty 1-D array, got shape {rec.shape}")
+    k9 = int(np.sum(rec == n_objects))
+    se = float(rec.std(ddof=1) / np.sqrt(len(rec))) if len(rec) > 1 else np.inf
+    q = float(student_t.ppf(0.975, max(len(rec) - 1, 1)))
+    return {"all_nine_ci": tuple(float(x) for x in binomial_interval(k9, len(rec),
+                                                                     confidence=0.95)),
+            "mean_recovered_ci": (float(rec.mean()) - q * se, float(rec.mean()) + q * se),
+            "n_objects": int(n_objects), "all_nine_share": k9 / len(rec),
+            "mean_recovered": float(rec.mean())}
+
+
+def placement_study(scenarios: dict[str, Scenario], errors: ErrorConfig = _ERRORS,
+                    thresholds=None, threshold: float = 10.0, n_draws: int = 100, *,
+                    band: tuple[float, float] | None = None, seed: int = 20190401,
+                    runner: TrialRunner | None = None) -> pd.DataFrame:
+    """Figs. 4–5 and Table 3 statistics on other object placements (same seeds for each, so
+    the same errors and false targets): recall and precision at ``threshold``, their best
+    values inside Fig. 5's band (default the paper's 8–12 px), the best threshold of the
+    sweep, Table 3's objects recovered with the intervals of its criterion and the status that
+    criterion would give on that placement (exploratory: the scored status is the one of our
+    scene)."""
+    if not isinstance(scenarios, dict) or not scenarios:
+        raise TypeError("scenarios must be a non-empty dict of name -> Scenario")
+    th = np.arange(0.5, 20.01, 0.5) if thresholds is None else np.asarray(thresholds, float)
+    k_l = np.flatnonzero(np.isclose(th, threshold))
+    if len(k_l) != 1:
+        raise ValueError(f"threshold={threshold!r} must be one of the thresholds")
+    lo, hi = (tuple(float(x) for x in load_claims(SLUG)["epipolar.fig5"].paper[
+        "best_threshold_px"]) if band is None else (float(band[0]), float(band[1])))
+    in_band = (th >= lo) & (th <= hi)
+    if not in_band.any():
+        raise ValueError(f"band={band!r} contains none of the thresholds")
+    rows = {}
+    for name, sc in scenarios.items():
+        if not isinstance(sc, Scenario):
+            raise TypeError(f"scenarios[{name!r}] must be a Scenario, got {type(sc).__name__}")
+        out = run_trials(placement_trial, n_draws, seed=seed, runner=runner,
+                         args=(sc, errors, th, float(threshold)), desc=f"placement {name}")
+        sw = sweep_rates(np.sum([o["correct"] for o in out], 0),
+                         np.sum([o["false"] for o in out], 0),
+                         float(sum(o["n_true"] for o in out)), th)
+        m = table3_measure([o["objects_recovered"] for o in out], len(sc.names))
+        rows[name] = {
+            f"correct of true at L = {threshold:g}": float(sw.accuracy[k_l[0]]),
+            f"correct of associated at L = {threshold:g}": float(1 - sw.false_rate[k_l[0]]),
+            f"best in {lo:g}–{hi:g} px, correct of true": float(sw.accuracy[in_band].max()),
+            f"best in {lo:g}–{hi:g} px, correct of associated":
+                float((1 - sw.false_rate[in_band]).max()),
+            "best L (px)": sw.best_threshold,
+            "objects recovered (mean)": m["mean_recovered"],
+            "mean, 95 % t": "{:.2f}–{:.2f}".format(*m["mean_recovered_ci"]),
+            "all nine (share)": m["all_nine_share"],
+            "all nine, 95 % Wilson": "{:.3f}–{:.3f}".format(*m["all_nine_ci"]),
+            "Table 3 status": str(status_table3(m))}
+    return pd.DataFrame(rows).T
+
+
 def table4_paired(scen: Scenario, mc: MonteCarlo, *, confidence: float = 0.95,
                   key: str = "mean_d") -> pd.DataFrame:
     """Paired (noisy − noise-free) mean distance per map pair over the draws, with two-sided
@@ -569,12 +636,8 @@ def score(scen: Scenario, draw: DisplayedDraw, mc: MonteCarlo, res6: dict, *,
     rec_mc = mc.stack("objects_recovered")
     n_obj = len(scen.names)
     k9 = int(np.sum(rec_mc == n_obj))
-    se_rec = float(rec_mc.std(ddof=1) / np.sqrt(len(rec_mc))) if len(rec_mc) > 1 else np.inf
-    q_rec = float(student_t.ppf(0.975, max(len(rec_mc) - 1, 1)))
-    m3t = {"all_nine_ci": tuple(float(x) for x in binomial_interval(k9, n_draws, confidence=0.95)),
-           "mean_recovered_ci": (float(rec_mc.mean()) - q_rec * se_rec,
-                                 float(rec_mc.mean()) + q_rec * se_rec),
-           "n_objects": n_obj, "displayed_recovered": objects_recovered(obs, draw.rows, scen)}
+    m3t = {**table3_measure(rec_mc, n_obj),
+           "displayed_recovered": objects_recovered(obs, draw.rows, scen)}
     add("epipolar.table3", status_table3(m3t),
         f"displayed draw: {m3t['displayed_recovered']}/{n_obj} objects recovered as Table 3 "
         f"rows, {len(draw.rows) - m3t['displayed_recovered']} further multi-map row(s); over "

@@ -53,6 +53,8 @@ __all__ = [
     "frame_chain",
     "nominal_draw",
     "orbit_frame",
+    "perturbed_scenario",
+    "repointed_scenario",
     "sensor_table",
 ]
 
@@ -251,6 +253,60 @@ def build_scenario(sensor: SensorConfig = SensorConfig()) -> Scenario:
         raise RuntimeError("scenario construction failed to reproduce Table 3's visibility")
     los_ok = line_of_sight_clear(sat[:, None, :], objects[None, :, :])
     return Scenario(tuple(cams), objects, visible, sat, tuple(names), px, los_ok, sensor)
+
+
+# --------------------------------------------------------------------------- other placements
+def repointed_scenario(scenario: Scenario, objects_km, *, margin_px: float = 25.0) -> Scenario:
+    """The scenario with the objects moved to ``objects_km`` and every sensor re-pointed so that
+    each map still sees exactly its Table 3 objects (``margin_px`` inside the edges).
+
+    A sensor that still sees exactly its objects (5 px inside the edges, the check of
+    :func:`build_scenario`) keeps its pointing; any other gets the least-squares rotation that
+    keeps the objects as close as possible to their present pixels under the visibility
+    constraint (the construction of :func:`build_scenario`): a moved object that leaves an
+    image drags its sensor's pointing just far enough to bring it back. Raises ``ValueError`` for a wrong shape and
+    ``RuntimeError`` if the visibility pattern cannot be kept.
+    """
+    X = np.asarray(objects_km, float)
+    if X.shape != scenario.objects_km.shape or not np.all(np.isfinite(X)):
+        raise ValueError(f"objects_km must be a finite array of shape "
+                         f"{scenario.objects_km.shape}, got {X.shape}")
+    m = check_positive(margin_px, "margin_px", allow_zero=True)
+    cams = []
+    for k, cam in enumerate(scenario.cameras):
+        if np.array_equal(cam.sees(X, margin_px=min(5.0, m)), scenario.visible[k]):
+            cams.append(cam)  # still sees exactly its objects: pointing unchanged
+            continue
+        target = cam.project(X)
+        R = _fit_attitude(X, cam.c, cam.K, target, scenario.visible[k], cam.size[0], margin=m)
+        cams.append(PinholeCamera(cam.K, R, cam.c, cam.size, cam.dist))
+    seen = np.stack([cam.sees(X, margin_px=min(5.0, m)) for cam in cams])
+    if not np.array_equal(seen, scenario.visible):
+        raise RuntimeError("re-pointing cannot keep Table 3's visibility for these positions")
+    los_ok = line_of_sight_clear(scenario.sat_km[:, None, :], X[None, :, :])
+    return replace(scenario, cameras=tuple(cams), objects_km=X, los_clear=los_ok)
+
+
+def perturbed_scenario(scenario: Scenario, rng: np.random.Generator, *, max_km: float = 15.0,
+                       keep: tuple[int, ...] = (0,), margin_px: float = 10.0,
+                       max_tries: int = 1000) -> Scenario:
+    """The scenario with every object not in ``keep`` moved by a uniform offset within
+    ±``max_km`` per axis, sensors unchanged, redrawn until every map sees exactly its Table 3
+    objects (``margin_px`` inside the edges). Raises ``RuntimeError`` after ``max_tries``."""
+    check_generator(rng)
+    check_positive(max_km, "max_km")
+    n_tries = check_int(max_tries, "max_tries", min_value=1)
+    move = np.ones(len(scenario.objects_km), bool)
+    move[list(keep)] = False
+    for _ in range(n_tries):
+        X = scenario.objects_km.copy()
+        X[move] += rng.uniform(-max_km, max_km, (int(move.sum()), 3))
+        if all(np.array_equal(c.sees(X, margin_px=margin_px), scenario.visible[k])
+               for k, c in enumerate(scenario.cameras)):
+            los_ok = line_of_sight_clear(scenario.sat_km[:, None, :], X[None, :, :])
+            return replace(scenario, objects_km=X, los_clear=los_ok)
+    raise RuntimeError(f"no placement within ±{max_km:g} km kept the visibility pattern "
+                       f"in {n_tries} tries")
 
 
 # --------------------------------------------------------------------------- one draw

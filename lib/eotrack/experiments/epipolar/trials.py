@@ -54,6 +54,7 @@ __all__ = [
     "objects_recovered",
     "pair_distances",
     "perfect_summary",
+    "placement_trial",
     "row_labels",
     "run_fig6",
     "run_scenario_draws",
@@ -386,6 +387,24 @@ def scenario_trial(rng: np.random.Generator, scenario: Scenario, errors: ErrorCo
             "perfect_table": perfect_summary(obs, rows, scenario),
             "objects_recovered": objects_recovered(obs, rows, scenario),
             "tri_err_km": errs}
+
+
+def placement_trial(rng: np.random.Generator, scenario: Scenario, errors: ErrorConfig,
+                    thresholds: np.ndarray, nominal_px: float = 10.0) -> dict:
+    """One draw of the lighter study used to compare object placements: the Fig. 5 sweep counts
+    and the Table 3 statistic (objects recovered, paper rule at ``nominal_px``).
+
+    Draws the observation exactly as :func:`scenario_trial` does (one child seed), so the same
+    seed gives the same errors and false targets in both.
+    """
+    check_generator(rng)
+    child = int(rng.integers(2**63))
+    obs = draw_observation(np.random.default_rng(child), scenario, errors)
+    dists = {(a, b): pair_distances(obs, a, b) for a, b in PAIRS}
+    correct, false, n_true = sweep_counts(obs, thresholds, distances=dists)
+    rows = summary_rows(obs, associate_observation(obs, nominal_px, distances=dists))
+    return {"correct": correct, "false": false, "n_true": n_true,
+            "objects_recovered": objects_recovered(obs, rows, scenario)}
 
 
 def _mean_true_distance(obs: Observation, matches) -> np.ndarray:
