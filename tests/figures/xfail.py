@@ -12,7 +12,6 @@ before the kernel recorded the lint's verdict: re-execute it).
 XFAIL: dict[str, str] = {
     "case:akf_star.plot_example_frames": "P05",  # small-text 5, too-wide 1
     "case:track_init_hough.plot_explore": "P04",  # legend-covers-data 2, small-text 38, title 1, t
-    "case:track_init_ht.explore_figure": "P03",  # legend-covers-data 1
     "nocase:akf_star.plot_confidence_trace": "P05",  # no lint case yet
     "nocase:akf_star.plot_diurnal_check": "P05",  # no lint case yet
     "nocase:akf_star.plot_error_curves": "P05",  # no lint case yet
