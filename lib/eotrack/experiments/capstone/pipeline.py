@@ -432,15 +432,22 @@ def observe_burst(rng: np.random.Generator, plan: NightPlan) -> BurstResult:
                                      f"apart < 3 PSF σ = {3 * cfg.psf_sigma_px:g} px): their "
                                      "tracklets are not associated"))
     blocked = {f for f, st, _ in failures if st == "association"}
+    from eotrack.tracking.initiation.base import Track
+
     tracks = []
-    frames = [(float(b.times_s[k]), m.xy[c]) for k, m, c in zip(kept_k, measured, cand)]
-    init_tracks = initiate_tracks(measured, config=pcfg, initiator=_initiator(cfg, v_max)) \
-        if len(measured) >= min(nf, 4) else []
+    # the frames the chain measured (all detections; the tracks' hits index them)
+    frames = [(float(b.times_s[k]), m.xy) for k, m in zip(kept_k, measured)]
+    m_conf = min(nf, 4)
+    hit_lists = initiate_tracks(measured, config=pcfg, initiator=_initiator(cfg, v_max)) \
+        if len(measured) >= m_conf else []
+    # as eotrack Tracks for the GOSPA (confirmed at its third hit, not before frame m − 1)
+    init_tracks = [Track(hits=list(h), confirmed_at=max(h[min(len(h), 3) - 1][0], m_conf - 1))
+                   for h in hit_lists]
     for tr in init_tracks:
         idx = np.array([f for f, _ in tr.hits])
         fi = kept_k[idx]
-        xy = np.array([frames[f][1][dd] for f, dd in tr.hits]).reshape(-1, 2)
-        dirs_t = np.concatenate([measured[f].solution.pixel_to_directions(frames[f][1][dd][None])
+        xy = np.array([measured[f].xy[dd] for f, dd in tr.hits]).reshape(-1, 2)
+        dirs_t = np.concatenate([measured[f].solution.pixel_to_directions(measured[f].xy[dd][None])
                                  for f, dd in tr.hits])
         # scoring: which object (if any) is it; its true per-ray angle errors
         true_obj, ray_err = -1, np.full(len(fi), np.nan)
@@ -466,7 +473,6 @@ def observe_burst(rng: np.random.Generator, plan: NightPlan) -> BurstResult:
     # present; a burst with fewer than two scorable frames left — a clouded frame — gets none:
     # Stone Soup's SIAP needs two time stamps)
     gospa = {}
-    m_conf = min(nf, 4)
     if len(frames) - (m_conf - 1) >= 2:
         truth = [np.where(lit[:, k, None], b.target_xy[:, k], -1e3) for k in kept_k]
         gospa = initiation_metrics(init_tracks, frames, truth, width=float(n), c=5.0, p=1.0,
