@@ -60,9 +60,20 @@ def effective_font_scale(fig: Figure, renderer: Any = None) -> float:
     if renderer is None:
         canvas = FigureCanvasAgg(fig) if fig.canvas is None else fig.canvas
         renderer = canvas.get_renderer() if hasattr(canvas, "get_renderer") else None
-    bbox = fig.get_tightbbox(renderer)
-    width_in = bbox.width  # tight bbox is in inches
+    width_in = saved_width_in(fig, renderer)
     return float(min(1.0, BOOK_WIDTH_IN / max(width_in, 1e-9)))
+
+
+def saved_width_in(fig: Figure, renderer: Any) -> float:
+    """The figure's width as saved (inches): its tight bounding box plus the padding
+    ``savefig`` adds on both sides (``savefig.pad_inches``) when ``savefig.bbox`` is tight."""
+    import matplotlib as mpl
+
+    w = fig.get_tightbbox(renderer).width  # tight bbox is in inches
+    if mpl.rcParams["savefig.bbox"] == "tight":
+        pad = mpl.rcParams["savefig.pad_inches"]
+        w += 2 * (float(pad) if pad != "layout" else 0.0)
+    return float(w)
 
 
 def _draw_recording(fig: Figure) -> tuple[Any, list[Text]]:
@@ -379,7 +390,7 @@ def _check_width(fig: Figure, renderer: Any) -> list[FigureProblem]:
 
     dpi = mpl.rcParams["savefig.dpi"]
     dpi = fig.dpi if dpi == "figure" else float(dpi)
-    w_in = fig.get_tightbbox(renderer).width
+    w_in = saved_width_in(fig, renderer)
     scale = BOOK_COLUMN_PX / (w_in * dpi)
     if scale < MIN_BOOK_SCALE:
         return [FigureProblem("too-wide", f"{w_in:.1f} in wide at {dpi:g} dpi: the book shows it "

@@ -57,6 +57,8 @@ METHOD_LABELS = {
     "huber_ransac": "Huber from RANSAC", "cauchy_ransac": "Cauchy from RANSAC",
     "orbit": "orbit fit (Gauss IOD + Cauchy LSQ)",
 }
+#: shorter names where a legend must fit the book's column (the long ones in the text)
+_SHORT_LABELS = {"orbit": "orbit fit (IOD + Cauchy)", "wransac_refit": "WRANSAC (refit, 1 step)"}
 
 
 def _styles(names: list[str]) -> list:
@@ -372,7 +374,7 @@ def plot_generalisation(table: pd.DataFrame, *, ax: plt.Axes | None = None,
     k = len(worst.columns)
     for i, (m, st) in enumerate(zip(worst.columns, _bar_styles(list(worst.columns)), strict=True)):
         ax.bar(x + (i - k / 2 + 0.5) * 0.8 / k, worst[m], width=0.8 / k,
-               label=METHOD_LABELS.get(m, m), **st.bar())
+               label=_SHORT_LABELS.get(m, METHOD_LABELS.get(m, m)), **st.bar())
     ax.set_yscale("log")
     log_axis(ax, "y")
     ax.set_xticks(x, [_case_tick(c) for c in worst.index])
