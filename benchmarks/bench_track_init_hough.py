@@ -11,7 +11,14 @@
 3. The planted-scene Monte Carlo of claim ``track_init.planted_scenes``: recall and false
    tracks per scene of every initiator against the analytic chance rate of the χ² 3-of-4 rule.
 4. Held-out scenes (accelerating objects, a clutter burst, irregular intervals, P_D 0.8):
-   recall and false tracks of the default initiator against logic 3/4.
+   recall and false tracks of the default initiator and of the opt-in settings
+   (:data:`HELDOUT_OPTS`) against logic 3/4. Criteria fixed before the decisive run (issue 27,
+   written 2026-12-02 00:45 UTC before seed :data:`HELDOUT_SEED` was ever drawn): the family
+   :class:`~eotrack.experiments.track_init_hough.HeldOutConfig` at ±3 px/s², 60 scenes from seed
+   :data:`HELDOUT_SEED`; recall ≥ 0.90 **and** false tracks per scene ≤ logic 3/4's on the same
+   scenes **and** ≤ 5 ms/frame at 200 candidates, ≤ 50 ms at 1,000 (section 2). Seeds 11 and
+   777 were used to choose the opt-ins (``chance_budget = 2`` among 0.05–20): they are tuning
+   seeds and are reported as such.
 
 Run: ``.venv/bin/python benchmarks/bench_track_init_hough.py`` (``--quick`` for fewer repeats
 and scenes, ``--profile`` to print a cProfile of the verified initiator at 200 candidates).
@@ -39,7 +46,14 @@ from eotrack.tracking.initiation import (
 from skimage.transform import hough_line
 
 TARGETS = {("modified Hough (ours)", 200): 5.0, ("modified Hough (ours)", 1000): 50.0,
+           ("modified Hough (ours, held-out opt-ins)", 200): 5.0,
+           ("modified Hough (ours, held-out opt-ins)", 1000): 50.0,
            ("logic 3/4", 200): 5.0}
+#: the opt-in settings for accelerating objects among clutter bursts (chosen on seeds 11, 777)
+HELDOUT_OPTS = {"hold_triplets": True, "accel_triplets": True, "chance_budget": 2.0}
+#: the decisive held-out seed (never used for tuning) and its targets
+HELDOUT_SEED = 20261202
+HELDOUT_TARGETS = {"recall": 0.90, "false <= logic 3/4": True}
 
 
 def cpu_and_wall(fn, repeat: int) -> tuple[float, float]:
@@ -101,6 +115,7 @@ def bench_accumulator(n_points: int = 800, seed: int = 0, repeat: int = 60) -> N
 
 def bench_per_frame(sizes=(50, 100, 200, 500, 1000), repeat: int = 7) -> pd.DataFrame:
     inits = {"modified Hough (ours)": ModifiedHoughInitiator(),
+             "modified Hough (ours, held-out opt-ins)": ModifiedHoughInitiator(**HELDOUT_OPTS),
              "modified Hough (paper, literal)": ModifiedHoughInitiator(literal=True),
              "logic 3/4": LogicInitiator()}
     limit = {"modified Hough (paper, literal)": 200, "logic 3/4": 500}
@@ -159,6 +174,8 @@ def bench_heldout(n_scenes: int, seed: int = 777, accel_px_s2: float = 3.0) -> N
     irregular intervals, P_D 0.8. Targets: recall ≥ 0.90 and false tracks ≤ logic 3/4's."""
     cfg = replace(TH.HeldOutConfig(), accel_px_s2=accel_px_s2)
     inits = {"modified Hough (ours, default)": ModifiedHoughInitiator(v_min=3, v_max=240),
+             "modified Hough (ours, held-out opt-ins)": ModifiedHoughInitiator(
+                 v_min=3, v_max=240, **HELDOUT_OPTS),
              "modified Hough (ours, accel_gapped)": ModifiedHoughInitiator(
                  v_min=3, v_max=240, accel_gapped=True),
              "modified Hough (ours, accel_px_s2=0)": ModifiedHoughInitiator(
@@ -173,14 +190,18 @@ def bench_heldout(n_scenes: int, seed: int = 777, accel_px_s2: float = 3.0) -> N
             tot[name][0] += r["correct"]
             tot[name][1] += r["eligible"]
             tot[name][2] += r["false"]
-    print(f"\n4) held-out scenes ({n_scenes}: {cfg.n_frames} frames at {cfg.dt_s} s intervals, "
+    role = "DECISIVE held-out seed" if seed == HELDOUT_SEED else "tuning seed"
+    print(f"\n4) {role} {seed}: scenes ({n_scenes}: {cfg.n_frames} frames at {cfg.dt_s} s intervals, "
           f"accelerations ±{cfg.accel_px_s2:g} px/s² along and across, P_D {cfg.p_detect}, "
           f"a burst of {cfg.burst} false alarms in one frame)")
     for name, (c, e, f) in tot.items():
         print(f"   {name:38s} recall {c / max(e, 1):.3f}  false/scene {f / n_scenes:.2f}")
-    d, lg = tot["modified Hough (ours, default)"], tot["logic 3/4"]
-    print(f"   targets: recall ≥ 0.90: {d[0] / max(d[1], 1) >= 0.9}; false ≤ logic 3/4: "
-          f"{d[2] <= lg[2]}")
+    lg = tot["logic 3/4"]
+    for name in ("modified Hough (ours, default)", "modified Hough (ours, held-out opt-ins)"):
+        d = tot[name]
+        print(f"   {name}: recall ≥ {HELDOUT_TARGETS['recall']}: "
+              f"{d[0] / max(d[1], 1) >= HELDOUT_TARGETS['recall']}; false ≤ logic 3/4: "
+              f"{d[2] <= lg[2]}")
 
 
 def profile_verified(n_c: int = 200) -> None:
@@ -207,8 +228,9 @@ if __name__ == "__main__":
     bench_accumulator(repeat=20 if args.quick else 60)
     bench_per_frame(repeat=3 if args.quick else 7)
     bench_planted(20 if args.quick else 100, 10 if args.quick else 100)
-    for acc in (3.0, 5.0):  # seed 777: not the one the default was sized on (11)
+    for acc in (3.0, 5.0):  # seed 777: a tuning seed (the opt-ins were chosen on 11 and 777)
         bench_heldout(15 if args.quick else 60, accel_px_s2=acc)
+    bench_heldout(15 if args.quick else 60, seed=HELDOUT_SEED, accel_px_s2=3.0)
     if args.profile:
         profile_verified()
     print(f"\nload average at end: {os.getloadavg()[0]:.1f}; total "
