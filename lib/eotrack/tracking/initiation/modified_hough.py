@@ -139,6 +139,25 @@ class ModifiedHoughInitiator:
         four-hit windows of the last five frames (4 detections in 5 frames, the missed frame
         anywhere inside). Off by default: on the held-out family it raises recall but costs
         about 1.6× the time per frame (notebook 04, Beyond).
+    accel_triplets
+        Verified initiator with ``accel_px_s2 > 0`` only: the χ² test of a **three-hit**
+        candidate adds the acceleration's variance (along and cross uniform in
+        ``±accel_px_s2``: ``a²/3`` per axis) to the second difference of its positions, and
+        three-hit candidates get four-hit constant-acceleration extensions (the χ² (2 d.o.f.)
+        disc of the quadratic through the three hits) into the window's empty frames. The
+        widening is density-aware (``chance_budget``). Off by default (the paper's scenes and
+        the capstone keep the constant-velocity test).
+    hold_triplets
+        Verified initiator only: hold-and-confirm. A three-hit candidate whose last hit is in
+        the current frame waits one frame (it is confirmed at the next frame if nothing longer
+        took its detections; at the last frame of the sequence nothing waits), so that a
+        four-hit track through the same detections is preferred to it. Confirmation windows
+        then span ``m + 1`` frames. Off by default.
+    chance_budget
+        With ``accel_triplets``: the acceleration widening of a triplet shape's third-point
+        disc is cut so that the disc holds at most this many chance triplets in expectation
+        (uniform clutter over the target frame's bounding box, all velocity-gated seed pairs);
+        never below the constant-velocity disc. ``0`` lifts the cut.
     """
 
     d_rho: float = 5.0
@@ -156,6 +175,9 @@ class ModifiedHoughInitiator:
     alpha: float = 1e-3
     accel_px_s2: float = 3.0
     accel_gapped: bool = False
+    accel_triplets: bool = False
+    hold_triplets: bool = False
+    chance_budget: float = 2.0
 
     def __post_init__(self) -> None:
         check_positive(self.d_rho, "d_rho")
@@ -174,8 +196,10 @@ class ModifiedHoughInitiator:
         if not a < 1:
             raise ValueError(f"alpha must lie in (0, 1), got {self.alpha}")
         check_positive(self.accel_px_s2, "accel_px_s2", allow_zero=True)
-        if not isinstance(self.accel_gapped, (bool, np.bool_)):
-            raise TypeError(f"accel_gapped must be True or False, got {self.accel_gapped!r}")
+        check_positive(self.chance_budget, "chance_budget", allow_zero=True)
+        for name in ("accel_gapped", "accel_triplets", "hold_triplets"):
+            if not isinstance(getattr(self, name), (bool, np.bool_)):
+                raise TypeError(f"{name} must be True or False, got {getattr(self, name)!r}")
         if not self.literal and self.m < 4:
             raise ValueError(f"the verified initiator (literal=False) needs m >= 4 (a triplet "
                              f"plus the window), got m={self.m}; use literal=True for m < 4")
@@ -693,9 +717,16 @@ class _VerifiedEngine:
         self.m = cfg.m
         self.need = cfg.m - 1
         self.sigma = cfg.sigma_px
+        self.hold = bool(cfg.hold_triplets)
+        self.slots = cfg.m + 1 if self.hold else cfg.m
         self.thr = np.array([np.inf, np.inf, np.inf]
                             + [float(chi2.ppf(1.0 - cfg.alpha, 2 * (n - 2)))
-                               for n in range(3, cfg.m + 1)])
+                               for n in range(3, self.slots + 1)])
+        # acceleration variance per image axis (along and cross uniform in ±a): a²/3
+        self.q_acc = (cfg.accel_px_s2**2 / 3.0 if cfg.accel_triplets else 0.0)
+        self.held = np.zeros((0, 3), dtype=np.int64)
+        self.last = len(xys) - 1
+        self.chance_budget = float(cfg.chance_budget)
         self._thr2 = float(chi2.ppf(1.0 - cfg.alpha, 2))
         sizes = [len(x) for x in xys]
         self.off = np.concatenate([[0], np.cumsum(sizes)]).astype(np.int64)
@@ -712,9 +743,9 @@ class _VerifiedEngine:
         return ModifiedHoughRun(self.handoff.tracks(self.perms), self.log)
 
     # -- the third-point search ------------------------------------------------
-    def _occupancy(self, f: int, r: float):
+    def _occupancy(self, f: int, r: float, cell: float = 1.0):
         """Occupancy image of frame ``f``'s available detections for radius ``r``."""
-        return occupancy_image(self.xys[f][self.available[f]], r)
+        return occupancy_image(self.xys[f][self.available[f]], r, cell_px=cell)
 
     def _triplets(self, fa: int, fb: int, ft: int, widen: float = 0.0) -> np.ndarray:
         """Triplets (seed in ``fa``, seed in ``fb``, third in ``ft``) passing the χ² disc test
@@ -729,14 +760,36 @@ class _VerifiedEngine:
         dt = tb - ta
         tau = (tt - tb) / dt
         cfac = 1.0 + (1.0 + tau) ** 2 + tau**2  # var(x_t − prediction) / σ²
-        r = self.sigma * math.sqrt(self.thr[3] * cfac) + widen
-        occ, x0, y0, w, h = self._occupancy(ft, r)
+        var = self.sigma**2 * cfac
+        if widen == 0.0 and self.q_acc > 0:
+            # acceleration-aware: the quadratic leaves the line by a/2 (t_t − t_a)(t_t − t_b)
+            q = self.q_acc
+            if self.chance_budget > 0:  # 0: no cut
+                # density-aware: the disc may not hold more than `chance_budget` chance triplets
+                # in expectation (uniform clutter over the target frame's bounding box)
+                pt = self.xys[ft][self.available[ft]]
+                area = max(float(np.prod(np.ptp(pt, axis=0) + 1.0)), 1.0)
+                n_pairs = len(ia_all) * len(ib_all) * min(
+                    1.0, math.pi * (cfg.v_max * dt) ** 2 / area)
+                r2_max = self.chance_budget * area / (math.pi * max(n_pairs * len(pt), 1.0))
+                q_max = max(r2_max / self.thr[3] - var, 0.0) / (0.5 * (tt - ta) * (tt - tb)) ** 2
+                q = min(q, q_max)
+            var += q * (0.5 * (tt - ta) * (tt - tb)) ** 2
+        r = math.sqrt(self.thr[3] * var) + widen
+        # cells of side ∝ r for wide discs (the acceleration search: r grows as Δt²), so the
+        # image stays about (span / cell + 20)² cells whatever the frame intervals
+        cell = max(1.0, r / 6.0)
+        occ, x0, y0, w, h = self._occupancy(ft, r, cell)
         a = self.xys[fa][ia_all]
         b = self.xys[fb][ib_all]
-        # prediction (1 + τ) b − τ a for every pair, as one outer sum per axis (float32)
+        # prediction (1 + τ) b − τ a for every pair, as one outer sum per axis (float32), in
+        # cell units
         f32 = np.float32
-        qx = ((1 + tau) * b[:, 0] - x0).astype(f32)[None, :] + (-tau * a[:, 0]).astype(f32)[:, None]
-        qy = ((1 + tau) * b[:, 1] - y0).astype(f32)[None, :] + (-tau * a[:, 1]).astype(f32)[:, None]
+        ic = 1.0 / cell
+        qx = (((1 + tau) * b[:, 0] - x0) * ic).astype(f32)[None, :] \
+            + (-tau * ic * a[:, 0]).astype(f32)[:, None]
+        qy = (((1 + tau) * b[:, 1] - y0) * ic).astype(f32)[None, :] \
+            + (-tau * ic * a[:, 1]).astype(f32)[:, None]
         np.clip(qx, 0, w - 1, out=qx)
         np.clip(qy, 0, h - 1, out=qy)
         key = qy.astype(np.int32)
@@ -777,6 +830,12 @@ class _VerifiedEngine:
                                           and k >= 3) else None
         if extra is not None:
             entry["accelerating"] = len(extra[0])
+        if self.hold and len(self.held):
+            h = self.held
+            self.held = np.zeros((0, 3), dtype=np.int64)
+            h = h[np.all(self.avail_flat[h], axis=1)]
+            rows = np.concatenate([rows, h])
+            entry["held"] = len(h)
         if len(rows) or (extra is not None and len(extra[0])):
             self._confirm(k, rows, lo, entry, extra)
         if self.log_on:
@@ -837,20 +896,38 @@ class _VerifiedEngine:
     def _confirm(self, k: int, trip: np.ndarray, lo: int, entry: dict,
                  extra: tuple[np.ndarray, np.ndarray] | None = None) -> None:
         cfg = self.cfg
-        m = self.m
+        m = self.slots
         first = k - m + 1
+        lo = max(0, first)
         slot_t = self.times[np.clip(np.arange(first, k + 1), 0, None)]
         rows = np.full((len(trip), m), -1, dtype=np.int64)
         np.put_along_axis(rows, self.frame_of[trip] - first, trip, axis=1)
         rows = self._extend(rows, slot_t, lo, first)
         mask, _tm, pm, v, rss = self._fit(rows, slot_t)
         nh = mask.sum(axis=1)
-        chi = rss / self.sigma**2
+        s2 = np.full(len(rows), self.sigma**2)
+        if self.q_acc > 0 and len(rows):
+            # three hits: χ² of the second difference with the acceleration's variance added,
+            # rss / (σ² + q D² / (4 |c|²)), D = (t2−t1)(t3−t2)(t3−t1), c = (t3−t2, t1−t3, t2−t1)
+            three = np.flatnonzero(nh == 3)
+            tt = np.sort(np.where(mask[three], slot_t[None, :], np.inf), axis=1)[:, :3]
+            t1, t2, t3 = tt[:, 0], tt[:, 1], tt[:, 2]
+            c2 = (t3 - t2) ** 2 + (t3 - t1) ** 2 + (t2 - t1) ** 2
+            dd = (t2 - t1) * (t3 - t2) * (t3 - t1)
+            s2[three] += self.q_acc * dd**2 / (4.0 * c2)
+        chi = rss / s2
         speed = np.hypot(v[:, 0], v[:, 1])
         ok = ((nh >= self.need) & (chi <= self.thr[nh]) & (speed >= cfg.v_min)
               & (speed <= cfg.v_max))
         rows, pm, v, chi, nh = rows[ok], pm[ok], v[ok], chi[ok], nh[ok]
         dof = 2 * (nh - 2)  # constant velocity: 2 coordinates × (hits − 2)
+        if self.q_acc > 0 and np.any(nh == 3):
+            q = self._extend_quadratic(rows[nh == 3], slot_t, lo, first)
+            if len(q[0]):
+                extra = q if extra is None or not len(extra[0]) else tuple(
+                    np.concatenate([a, b]) for a, b in zip(_pad_rows(extra, m), q))
+        if extra is not None and len(extra[0]):
+            extra = _pad_rows(extra, m)
         if extra is not None and len(extra[0]):
             # accelerating four-hit tracks join the same best-first selection (more hits
             # first, then by the p-value of the fit: their χ² has 2 degrees of freedom, a
@@ -871,9 +948,27 @@ class _VerifiedEngine:
         order = np.lexsort((-_chi2_dist.logsf(chi, np.maximum(dof, 1)), -nh))
         pos = np.empty(len(rows), dtype=np.int64)
         pos[order] = np.arange(len(rows))
-        win = greedy_disjoint(rows, pos, len(self.avail_flat))
-        entry["conflicts"] = int(len(rows) - len(win))
+        defer = np.zeros(len(rows), bool)
+        if self.hold and k < self.last:
+            # hold-and-confirm: a three-hit candidate ending in this frame waits one frame, so a
+            # longer track through its detections (next frame's search) is preferred to it
+            defer = (nh == 3) & (rows[:, -1] >= 0)
+        if np.any(defer):
+            keep = np.flatnonzero(~defer)
+            win = keep[greedy_disjoint(rows[keep], pos[keep], len(self.avail_flat))]
+        else:
+            win = greedy_disjoint(rows, pos, len(self.avail_flat))
+        entry["conflicts"] = int(len(rows) - len(win) - defer.sum())
         entry["confirmed"] = len(win)
+        if np.any(defer):
+            used = np.zeros(len(self.avail_flat), bool)
+            wr = rows[win]
+            used[wr[wr >= 0]] = True
+            d = rows[defer]
+            d = d[~np.any(used[np.maximum(d, 0)] & (d >= 0), axis=1)]
+            # the three hits of each deferred candidate, in frame order
+            self.held = np.sort(np.where(d >= 0, d, np.iinfo(np.int64).max), axis=1)[:, :3]
+            entry["deferred"] = len(self.held)
         if len(win) == 0:
             return
         rows, pm, v, chi, nh = rows[win], pm[win], v[win], chi[win], nh[win]
@@ -886,10 +981,56 @@ class _VerifiedEngine:
         f = self.frame_of[g]
         self.handoff.confirm_batch(f, np.where(ok, g - self.off[f], -1), k, self.fw, info=infos)
 
+    def _extend_quadratic(self, rows: np.ndarray, slot_t: np.ndarray, lo: int, first: int):
+        """Four-hit constant-acceleration extensions of three-hit rows: for each empty slot,
+        the nearest available detection inside the χ² (2 d.o.f.) disc of the quadratic through
+        the three hits. Returns (rows, χ², mean position, velocity) as ``_accel_tracks``."""
+        m = rows.shape[1]
+        out, chis = [], []
+        hit_slots = np.sort(np.where(rows >= 0, np.arange(m)[None, :], m), axis=1)[:, :3]
+        g = np.take_along_axis(rows, hit_slots, 1)
+        ts = slot_t[hit_slots]
+        xy = self.xy_flat[g]  # (n, 3, 2)
+        for s in range(m):
+            f = first + s
+            if f < lo or not np.any(self.available[f]):
+                continue
+            emp = np.flatnonzero(rows[:, s] < 0)
+            if len(emp) == 0:
+                continue
+            tq = slot_t[s]
+            t3 = ts[emp]
+            lag = np.stack([np.prod([(tq - t3[:, j]) / (t3[:, i] - t3[:, j])
+                                     for j in range(3) if j != i], axis=0)
+                            for i in range(3)], 1)
+            pred = np.einsum("ni,nij->nj", lag, xy[emp])
+            var = 1.0 + (lag * lag).sum(axis=1)
+            r = self.sigma * np.sqrt(self._thr2 * var)
+            it_all = np.flatnonzero(self.available[f])
+            qi, pi, d2 = PointGrid(self.xys[f][it_all], float(r.max())).query(pred, r)
+            if len(qi) == 0:
+                continue
+            o = np.lexsort((d2, qi))
+            qi, pi, d2 = qi[o], pi[o], d2[o]
+            keep = np.r_[True, qi[1:] != qi[:-1]]
+            qi, pi, d2 = qi[keep], pi[keep], d2[keep]
+            ext = rows[emp[qi]].copy()
+            ext[:, s] = self.off[f] + it_all[pi]
+            out.append(ext)
+            chis.append(d2 / (self.sigma**2 * var[qi]))
+        if not out:
+            z = np.zeros((0, 2))
+            return np.zeros((0, m), dtype=np.int64), np.zeros(0), z, z
+        rows4, chi = np.concatenate(out), np.concatenate(chis)
+        _, _tm, pm, v, _ = self._fit(rows4, slot_t)
+        speed = np.hypot(v[:, 0], v[:, 1])
+        ok = (speed >= self.cfg.v_min) & (speed <= self.cfg.v_max)
+        return rows4[ok], chi[ok], pm[ok], v[ok]
+
     def _extend(self, rows: np.ndarray, slot_t: np.ndarray, lo: int, first: int) -> np.ndarray:
         """Add, per row, the nearest available detection of each empty window slot inside the
         gate of the constant-velocity prediction (the full χ² test follows)."""
-        m = self.m
+        m = rows.shape[1]
         for s in range(m):
             f = first + s
             if f < lo or not np.any(self.available[f]):
@@ -903,7 +1044,7 @@ class _VerifiedEngine:
             dtc = (slot_t[None, :] - tm[:, None]) * mask
             var = 1.0 + 1.0 / nh + (slot_t[s] - tm) ** 2 / (dtc * dtc).sum(axis=1)
             pred = pm + v * (slot_t[s] - tm)[:, None]
-            r = self.sigma * np.sqrt(self.thr[min(m, 4)] * var)
+            r = self.sigma * np.sqrt(self.thr[min(self.m, 4)] * var)
             it_all = np.flatnonzero(self.available[f])
             qi, pi, d2 = PointGrid(self.xys[f][it_all], float(r.max())).query(pred, r)
             if len(qi) == 0:
@@ -915,6 +1056,16 @@ class _VerifiedEngine:
             ext[:, s] = self.off[f] + it_all[pi[keep]]
             rows = np.concatenate([rows, ext])
         return rows
+
+
+def _pad_rows(extra: tuple, m: int) -> tuple:
+    """``extra`` (rows, χ², mean position, velocity) with its rows padded on the left to ``m``
+    columns (empty slots ``−1``)."""
+    rows = extra[0]
+    if rows.shape[1] >= m:
+        return extra
+    pad = np.full((len(rows), m - rows.shape[1]), -1, dtype=np.int64)
+    return (np.concatenate([pad, rows], 1), *extra[1:])
 
 
 def _track_infos(p_mean: np.ndarray, v: np.ndarray, origin) -> list[dict]:

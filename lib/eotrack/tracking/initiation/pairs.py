@@ -195,15 +195,23 @@ class PointGrid:
         return qi[o], pi[o], d2[o]
 
 
-def occupancy_image(xy: np.ndarray, radius: float) -> tuple[np.ndarray, int, int, int, int]:
-    """A 1-pixel image marking where a query may lie within ``radius`` of a point.
+def occupancy_image(xy: np.ndarray, radius: float, *, cell_px: float = 1.0,
+                    ) -> tuple[np.ndarray, float, float, int, int]:
+    """An image of cells of side ``cell_px`` marking where a query may lie within ``radius`` of
+    a point.
 
-    Pixel ``(ix, iy)`` covers ``[x0 + ix, x0 + ix + 1) × [y0 + iy, y0 + iy + 1)``; it is marked
-    when some pixel within ``radius + √2`` (pixel distance) holds a point, so every position
-    within ``radius`` of a point falls on a marked pixel (a superset: marked pixels are then
-    checked exactly; for radii above 8 px the disc is widened to a square, which OpenCV dilates
-    in time independent of its size). A border of empty pixels surrounds the points, so look-ups clipped to the
-    image land on empty pixels. Built as one dilation (``cv2.dilate``) of the points' pixels.
+    Cell ``(ix, iy)`` covers ``[x0 + ix·c, x0 + (ix + 1)·c) × [y0 + iy·c, y0 + (iy + 1)·c)``
+    (``c = cell_px``); a query ``q`` looks up cell ``floor((q − (x0, y0)) / c)``. A cell is
+    marked when some cell within ``radius / c + √2`` (cell-index distance) holds a point, so
+    every position within ``radius`` of a point falls on a marked cell (a superset: marked cells
+    are then checked exactly; for kernels above 8 cells the disc is widened to a square, which
+    OpenCV dilates in time independent of its size). A border of empty cells surrounds the
+    points, so look-ups clipped to the image land on empty cells. Built as one dilation
+    (``cv2.dilate``) of the points' cells.
+
+    With ``cell_px = 1`` (the default) the image has ``(span + 2·radius)²`` pixels, which grows
+    with the radius; choosing ``cell_px`` proportional to the radius (e.g. ``max(1, radius/6)``)
+    bounds the image at about ``(span/c + 20)²`` cells whatever the radius.
 
     Parameters
     ----------
@@ -211,13 +219,17 @@ def occupancy_image(xy: np.ndarray, radius: float) -> tuple[np.ndarray, int, int
         Points ``(n, 2)``, ``n ≥ 1``.
     radius
         Query radius (pixels, > 0).
+    cell_px
+        Cell side (pixels, > 0).
 
     Returns
     -------
     occ : numpy.ndarray
-        Flattened ``uint8`` image (row-major, ``h × w``).
-    x0, y0, w, h : int
-        Origin and size of the image.
+        Flattened ``uint8`` image (row-major, ``h × w`` cells).
+    x0, y0 : float
+        Origin of the image (pixels; integers when ``cell_px = 1``).
+    w, h : int
+        Size of the image (cells).
     """
     import cv2
 
@@ -225,16 +237,25 @@ def occupancy_image(xy: np.ndarray, radius: float) -> tuple[np.ndarray, int, int
     if len(p) == 0:
         raise ValueError("xy must hold at least one point")
     r = check_positive(radius, "radius")
-    n = math.ceil(r + math.sqrt(2.0))
-    x0 = math.floor(float(p[:, 0].min())) - n - 1
-    y0 = math.floor(float(p[:, 1].min())) - n - 1
-    w = math.floor(float(p[:, 0].max())) - x0 + n + 2
-    h = math.floor(float(p[:, 1].max())) - y0 + n + 2
+    c = check_positive(cell_px, "cell_px")
+    n = math.ceil(r / c + math.sqrt(2.0))
+    if c == 1.0:
+        x0 = math.floor(float(p[:, 0].min())) - n - 1
+        y0 = math.floor(float(p[:, 1].min())) - n - 1
+        ix = np.floor(p[:, 0] - x0).astype(np.int64)
+        iy = np.floor(p[:, 1] - y0).astype(np.int64)
+    else:
+        x0 = float(p[:, 0].min()) - (n + 1) * c
+        y0 = float(p[:, 1].min()) - (n + 1) * c
+        ix = np.floor((p[:, 0] - x0) / c).astype(np.int64)
+        iy = np.floor((p[:, 1] - y0) / c).astype(np.int64)
+    w = int(ix.max()) + n + 2
+    h = int(iy.max()) + n + 2
     img = np.zeros((h, w), dtype=np.uint8)
-    img[np.floor(p[:, 1] - y0).astype(np.int64), np.floor(p[:, 0] - x0).astype(np.int64)] = 1
+    img[iy, ix] = 1
     if n <= 8:
         o = np.arange(-n, n + 1)
-        kernel = ((o[:, None] ** 2 + o[None, :] ** 2) <= (r + math.sqrt(2.0)) ** 2)
+        kernel = ((o[:, None] ** 2 + o[None, :] ** 2) <= (r / c + math.sqrt(2.0)) ** 2)
         kernel = kernel.astype(np.uint8)
     else:  # a square (a superset of the disc): OpenCV dilates with it in O(pixels)
         kernel = cv2.getStructuringElement(cv2.MORPH_RECT, (2 * n + 1, 2 * n + 1))
