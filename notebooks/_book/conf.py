@@ -116,6 +116,10 @@ def _toctree_markdown() -> str:
         entries = "\n".join(f"{title} </papers_repro/{slug}/REPORT>" for slug, title in reports)
         blocks.append(f"```{{toctree}}\n:hidden:\n:caption: Reproduction reports\n\n"
                       f"{entries}\n```")
+    howtos = sorted(p.stem for p in HERE.glob("howto_*.md"))
+    if howtos:  # how-to pages (e.g. howto_fits: real FITS frames through the pipeline)
+        entries = "\n".join(f"/notebooks/_book/{h}" for h in howtos)
+        blocks.append(f"```{{toctree}}\n:hidden:\n:caption: How-to guides\n\n{entries}\n```")
     blocks.append("```{toctree}\n:hidden:\n:caption: For teachers\n\n/notebooks/_book/teachers\n```")
     blocks.append("```{toctree}\n:hidden:\n:caption: Reference\n\n/notebooks/_book/api/index\n"
                   "/notebooks/_book/licences\n```")

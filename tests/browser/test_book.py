@@ -100,18 +100,13 @@ def test_book_has_every_page_and_nothing_remote(book):
 # --- static checks of the built HTML (issue 23) ---------------------------------------------
 SUBPACKAGES = ("astro", "exercises", "geometry", "imaging", "montecarlo", "notebook", "plotting",
                "pose", "repro", "robust", "tracking", "validation")
-#: figures shown below 80 % of their size (wider than 900 px), by page, until their owners
-#: redraw them narrower (house style: at most 9 in at 100 dpi); value: owner
-WIDE_FIGURES_XFAIL = {
-    "notebooks/01_wransac_trajectory_prediction": "P01",
+#: pages whose figures are still shown below 80 % of their size (wider than 900 px), until
+#: their owners redraw them narrower (house style: at most ~8.2 in at 110 dpi); value: owner
+WIDE_FIGURES_XFAIL: dict[str, str] = {
     "notebooks/04_track_init_logic_hough": "P04",
     "notebooks/05_akf_star_tracking": "P05",
-    # stored outputs from before its figures were redrawn: 07 cannot be re-executed while the
-    # extraction is ~20x slower (its night exceeds the 900 s cell timeout; see FIG's requests)
-    "notebooks/07_capstone_geo_surveillance": "FIG",
     "papers_repro/akf_star/REPORT": "P05",
     "papers_repro/track_init_hough/REPORT": "P04",
-    "papers_repro/wransac/REPORT": "P01",
 }
 MAX_NATIVE_PX = 900  # the 720 px column / 0.8
 
@@ -175,6 +170,50 @@ def test_reports_titled_by_paper_in_course_order(book):
     assert numbers == sorted(numbers), f"reports not in the course's order: {titles}"
     for slug, title in titles:
         assert slug not in title and " · " in title, f"report {slug} titled {title!r}, not by paper"
+
+
+def _lessons() -> list[Path]:
+    return [p for p in _pages() if p.parent.name == "notebooks" and not p.name.startswith("00")]
+
+
+@pytest.mark.parametrize("nb", _lessons(), ids=lambda p: p.stem)
+def test_lesson_opens_and_ends_with_navigation(book, nb):
+    """← previous · index · next →, as the first and the last thing of every lesson."""
+    lessons = _lessons()
+    i = lessons.index(nb)
+    prev = lessons[i - 1].with_suffix(".html").name if i else "00_index.html"
+    nxt = lessons[i + 1].with_suffix(".html").name if i + 1 < len(lessons) else None
+    main = _main(book / nb.with_suffix(".html"))
+    navs = [m.start() for m in re.finditer(r"<p>←", main)]
+    assert len(navs) >= 2, f"{nb}: {len(navs)} navigation lines (want one first, one last)"
+    headings = [m.start() for m in re.finditer(r"<h2", main)]
+    assert navs[0] < headings[0] and navs[-1] > headings[-1], (
+        f"{nb}: the navigation is not before the first and after the last section")
+    for at in (navs[0], navs[-1]):
+        line = main[at:main.find("</p>", at)]
+        want = [prev, "00_index.html"] + ([nxt] if nxt else [])
+        missing = [w for w in want if f'href="{w}' not in line]
+        assert not missing, f"{nb}: navigation line lacks links to {missing}: {line[:200]}"
+
+
+def test_index_has_a_lab_sheet_per_lesson(book):
+    main = _main(book / "notebooks" / "00_index.html")
+    at = main.find('id="lab-sheets"')
+    assert at >= 0, "the index has no Lab sheets section"
+    table = main[at:main.find("</table>", at)]
+    head = re.sub(r"<[^>]+>", "", table[:table.find("</thead>")]).lower()
+    for col in ("run time", "difficulty", "prerequisites", "exercises to hand in"):
+        assert col in head, f"the lab sheets have no column {col!r}"
+    rows = re.findall(r"<tr[^>]*>\s*<td[^>]*>(\d\d)</td>(.*?)</tr>", table, re.S)
+    numbers = [n for n, _ in rows]
+    assert numbers == [p.name[:2] for p in _lessons()], f"lab sheet rows {numbers}"
+    for n, row in rows:
+        cells = [re.sub(r"<[^>]+>", "", c).strip() for c in re.findall(r"<td[^>]*>(.*?)</td>",
+                                                                      row, re.S)]
+        assert re.search(r"\d+(\.\d+)? min", cells[0]), f"lab {n}: no measured run time"
+        assert cells[-1] not in ("", "—"), f"lab {n}: no exercises to hand in"
+    assert "Rubric" in main and "full marks" in main, "the index has no grading rubric"
+    assert "_book/teachers.html" in main, "the index does not link the teachers' page"
 
 
 @pytest.mark.parametrize("page", _content_pages())
@@ -263,6 +302,33 @@ def _open(browser, url: str):
     return page, requests
 
 
+def _mathjax_errors(page) -> list[str]:
+    return page.eval_on_selector_all("main mjx-merror", "els => els.map(e => e.getAttribute("
+                                     "'data-mjx-error') || e.textContent)")
+
+
+def test_reference_and_teacher_pages_typeset_without_error(browser, server, book):
+    """The pages that are neither notebooks nor reports (API reference, teachers, licences):
+    every equation typeset, no MathJax error."""
+    pages = sorted(p for p in (book / "notebooks" / "_book").rglob("*.html"))
+    assert pages, "the book has no reference or teachers' pages"
+    bad = []
+    for html in pages:
+        if 'class="math' not in html.read_text(errors="replace"):
+            continue
+        page, _ = _open(browser, f"{server}/{html.relative_to(book).as_posix()}")
+        try:
+            n_math = page.locator("main .math").count()
+            n_typeset = page.locator("main mjx-container").count()
+            errors = _mathjax_errors(page)
+            if errors or n_typeset < n_math:
+                bad.append(f"{html.relative_to(book)}: {n_math} equations, {n_typeset} typeset, "
+                           f"errors {errors[:3]}")
+        finally:
+            page.close()
+    assert not bad, "\n".join(bad)
+
+
 @pytest.mark.parametrize("nb", _pages(), ids=lambda p: p.stem)
 def test_page_shows_figures_and_typeset_math(browser, server, nb):
     page, requests = _open(browser, f"{server}/{nb.with_suffix('.html').as_posix()}")
@@ -275,8 +341,7 @@ def test_page_shows_figures_and_typeset_math(browser, server, nb):
         if _has_math(nb):
             assert n_math > 0, f"{nb}: the notebook has LaTeX but the page no math elements"
         assert n_typeset >= n_math, f"{nb}: {n_math} equations but {n_typeset} typeset by MathJax"
-        errors = page.eval_on_selector_all("main mjx-merror", "els => els.map(e => e.getAttribute("
-                                           "'data-mjx-error') || e.textContent)")
+        errors = _mathjax_errors(page)
         assert not errors, f"{nb}: MathJax errors: {errors[:5]}"
         want = _image_outputs(nb)
         imgs = page.eval_on_selector_all(
@@ -301,6 +366,8 @@ def test_report_pages_show_their_figures(browser, server, slug):
         shown = page.eval_on_selector_all(
             "main img", "els => els.filter(e => e.complete && e.naturalWidth > 0).length")
         assert shown >= want, f"{slug}: REPORT links {want} figures, the page shows {shown}"
+        errors = _mathjax_errors(page)
+        assert not errors, f"{slug}: MathJax errors: {errors[:5]}"
         assert all(u.startswith(server) or u.startswith("data:") for u in requests)
     finally:
         page.close()
