@@ -415,9 +415,13 @@ def _rotate(p: np.ndarray, centre: np.ndarray, ang: float) -> np.ndarray:
 
 def _vote(det: np.ndarray, pred: np.ndarray, centre: np.ndarray, rolls: np.ndarray,
           max_off: float, radius: float) -> tuple[int, float, np.ndarray, float, int]:
-    """Best (votes, roll, offset, expected chance votes, pairs) of the offset vote."""
+    """Best (votes, roll, offset, expected chance votes, pairs) of the offset vote.
+
+    Ties between roll grid points are broken by the spread of the winning cluster.
+    """
     tree_d = cKDTree(det)
     best = (0, 0.0, np.zeros(2), 0.0, 0)
+    best_score = -np.inf
     for ang in rolls:
         pr = _rotate(pred, centre, ang)
         pairs = tree_d.sparse_distance_matrix(cKDTree(pr), max_off, output_type="ndarray")
@@ -428,10 +432,14 @@ def _vote(det: np.ndarray, pred: np.ndarray, centre: np.ndarray, rolls: np.ndarr
         counts = tree_o.query_ball_point(off, radius, return_length=True)
         k = int(np.argmax(counts))
         n = int(counts[k])
-        if n > best[0]:
-            members = tree_o.query_ball_point(off[k], radius)
+        members = tree_o.query_ball_point(off[k], radius)
+        centre_off = np.median(off[members], axis=0)
+        spread = float(np.mean(np.linalg.norm(off[members] - centre_off, axis=1))) / radius
+        score = n - spread
+        if score > best_score:
+            best_score = score
             lam = len(off) * (radius / max_off) ** 2
-            best = (n, float(ang), np.median(off[members], axis=0), lam, len(off))
+            best = (n, float(ang), centre_off, lam, len(off))
     return best
 
 
@@ -473,7 +481,9 @@ def solve_plate(xy_px: Any, catalog_radec_deg: Any, wcs_guess: WCS, *,
         Stars whose residual exceeds ``clip_sigma`` robust per-axis σ are dropped and the fit
         repeated (2-D: the chance of rejecting a good star is ``exp(-clip_sigma²/2)``).
     max_iter
-        Largest number of match–fit–clip rounds.
+        Largest number of match–fit–clip rounds (each round re-matches every detection with
+        the last fit, then clips by backward elimination: the worst star is dropped and the
+        fit repeated while its residual exceeds ``clip_sigma`` σ).
     max_vote_stars
         Brightest detections and catalogue stars used in the vote (all are used in the fit).
     fitter
@@ -553,7 +563,7 @@ def solve_plate(xy_px: Any, catalog_radec_deg: Any, wcs_guess: WCS, *,
     centre = np.array(w0.wcs.crpix, float) - 1.0
     r_max = max(np.hypot(max(centre[0], nx - 1 - centre[0]), max(centre[1], ny - 1 - centre[1])),
                 1.0)
-    step = r_match / r_max
+    step = r_match / (2.0 * r_max)   # corners move ≤ r_match/4 from the nearest grid roll
     n_roll = int(np.ceil(np.radians(max_roll) / step)) if max_roll > 0 else 0
     rolls = np.linspace(-np.radians(max_roll), np.radians(max_roll), 2 * n_roll + 1) \
         if n_roll else np.zeros(1)
@@ -575,29 +585,49 @@ def solve_plate(xy_px: Any, catalog_radec_deg: Any, wcs_guess: WCS, *,
         raise PlateSolveError("too_few_matches",
                               f"too few matches: {n_cand} star(s) within {r_match:g} px after "
                               f"the offset ({off[0]:.1f}, {off[1]:.1f}) px, need {n_min}")
-    keep = np.ones(n_cand, bool)
-    prev: tuple | None = None
     floor_as = 0.01 * scale
     # tangent point: the frame centre under the believed pointing corrected by the vote
     c_px = np.array([(nx - 1) / 2.0, (ny - 1) / 2.0])
     c_guess = _rotate((c_px - off)[None], centre, -roll)[0]
     tangent = tuple(float(v) for v in w0.wcs_pix2world([c_guess], 0)[0])
-    for _ in range(n_iter):
-        wcs = fit(xy[i_det[keep]], cat[idx[j_cat[keep]], 0], cat[idx[j_cat[keep]], 1], tangent)
-        # re-match every detection with the fitted WCS, then clip
+
+    def clip(i_d: np.ndarray, j_c: np.ndarray) -> tuple[WCS, np.ndarray]:
+        """LMedS start, re-admission from the inliers' fit, then backward elimination (drop
+        the worst pair while it exceeds k_clip robust σ)."""
+        keep = _lmeds_inliers(xy[i_d], cat[idx[j_c]], tangent, k_clip, floor_as)
+        for _ in range(10):   # re-admit / re-reject from the inliers' fit until stable
+            if keep.sum() < 3:
+                break
+            w = fit(xy[i_d[keep]], cat[idx[j_c[keep]], 0], cat[idx[j_c[keep]], 1], tangent)
+            res = _residuals(w, xy[i_d], cat[idx[j_c]])
+            sig = _robust_sigma(res[keep], floor_as)
+            new = res <= k_clip * sig
+            if np.array_equal(new, keep):
+                break
+            keep = new
+        while True:
+            if keep.sum() < n_min:
+                raise PlateSolveError("too_few_matches",
+                                      f"too few matches: {int(keep.sum())} star(s) left after "
+                                      f"{k_clip:g}σ clipping, need {n_min}")
+            w = fit(xy[i_d[keep]], cat[idx[j_c[keep]], 0], cat[idx[j_c[keep]], 1], tangent)
+            res = _residuals(w, xy[i_d], cat[idx[j_c]])
+            sig = _robust_sigma(res[keep], floor_as)
+            worst = int(np.argmax(np.where(keep, res, -1.0)))
+            if res[worst] <= k_clip * sig:
+                return w, keep
+            keep[worst] = False
+
+    wcs, keep = clip(i_det, j_cat)
+    for _ in range(n_iter - 1):
+        # re-match every detection with the fitted WCS; stop when the matched set is stable
         x, y = wcs.wcs_world2pix(cat[idx, 0], cat[idx, 1], 0)
-        i_det, j_cat = _one_to_one(xy, np.column_stack([x, y]), r_match)
-        res = _residuals(wcs, xy[i_det], cat[idx[j_cat]])
-        sig = max(float(np.sqrt(np.median(res ** 2) / (2 * np.log(2)))), floor_as)
-        keep = res <= k_clip * sig
-        state = (tuple(i_det[keep]), tuple(j_cat[keep]))
-        if keep.sum() < n_min:
-            raise PlateSolveError("too_few_matches",
-                                  f"too few matches: {int(keep.sum())} star(s) left after "
-                                  f"{k_clip:g}σ clipping (σ = {sig:.2f}″), need {n_min}")
-        if state == prev:
+        i_new, j_new = _one_to_one(xy, np.column_stack([x, y]), r_match)
+        if set(zip(i_new.tolist(), j_new.tolist())) == \
+                set(zip(i_det[keep].tolist(), j_cat[keep].tolist())):
             break
-        prev = state
+        i_det, j_cat = i_new, j_new
+        wcs, keep = clip(i_det, j_cat)
     i_det, j_cat = i_det[keep], j_cat[keep]
     tangent = tuple(float(v) for v in wcs.wcs_pix2world([c_px], 0)[0])
     wcs = fit(xy[i_det], cat[idx[j_cat], 0], cat[idx[j_cat], 1], tangent)
@@ -610,6 +640,50 @@ def solve_plate(xy_px: Any, catalog_radec_deg: Any, wcs_guess: WCS, *,
     wcs.pixel_shape = (nx, ny)
     return PlateSolution(wcs, len(i_det), i_det, idx[j_cat], res, rms, np.asarray(off, float),
                          float(np.degrees(roll)), n_cand)
+
+
+def _lmeds_inliers(xy: np.ndarray, radec: np.ndarray, tangent: tuple[float, float],
+                   k_clip: float, floor_arcsec: float, max_pairs: int = 14) -> np.ndarray:
+    """Inliers of the least-median-of-squares affine tangent-plane fit over triplets.
+
+    Every triplet of the first ``max_pairs`` pairs (brightest detections first) determines
+    the affine map exactly; the one with the smallest median squared residual over all pairs
+    wins (robust to just under 50 % outliers), and pairs within ``k_clip`` robust σ of it are
+    the starting inliers. Deterministic; vectorised over the triplets.
+    """
+    from itertools import combinations
+
+    n = len(xy)
+    if n < 4:
+        return np.ones(n, bool)
+    e, nn, z = _tangent_basis(*tangent)
+    u = _unit(radec[:, 0], radec[:, 1])
+    w = u @ z
+    q = np.column_stack([u @ e / w, u @ nn / w])              # rad
+    P = np.column_stack([xy, np.ones(n)])
+    tri = np.array(list(combinations(range(min(n, max_pairs)), 3)))
+    A = P[tri]                                                 # (t, 3, 3)
+    det = np.linalg.det(A)
+    ok = np.abs(det) > 1e-6 * np.max(np.abs(det))
+    if not ok.any():
+        return np.ones(n, bool)
+    X = np.linalg.solve(A[ok], q[tri[ok]])                     # (t, 3, 2)
+    r2 = np.sum((P @ X - q[None]) ** 2, axis=2) * (ARCSEC_PER_DEG * 180 / np.pi) ** 2
+    med = np.median(r2, axis=1)
+    best = int(np.argmin(med))
+    # robust per-axis σ of a Rayleigh residual, with the small-sample factor of LMedS
+    sig = max(float(np.sqrt(med[best] / (2 * np.log(2)))) * (1 + 5.0 / max(n - 3, 1)),
+              floor_arcsec)
+    keep = np.sqrt(r2[best]) <= k_clip * sig
+    return keep if keep.sum() >= 3 else np.ones(n, bool)
+
+
+def _robust_sigma(res: np.ndarray, floor: float) -> float:
+    """Per-axis σ of 2-D residuals of a 6-parameter fit: the Rayleigh median, corrected for the
+    degrees of freedom the fit used (``2n / (2n − 6)`` in variance)."""
+    n = len(res)
+    var = np.median(res ** 2) / (2 * np.log(2)) * (2 * n) / max(2 * n - 6, 1)
+    return max(float(np.sqrt(var)), floor)
 
 
 def _residuals(wcs: WCS, xy: np.ndarray, radec: np.ndarray) -> np.ndarray:
