@@ -346,11 +346,17 @@ def plot_snr_sweep(df: pd.DataFrame, *, ax: plt.Axes | None = None) -> plt.Axes:
 _EXPLORE: dict[str, Any] = {}
 
 
+def _explore_legend(ax: Any, handles: list[Any]) -> None:
+    """The Explore panel's legend, below its axes (outside the data area)."""
+    ax.legend(handles=handles, fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.2),
+              ncol=2, frameon=False)
+
+
 def _explore_artists() -> dict[str, Any]:
     """Build the Explore figure once: two log axes, their lines and markers (no pyplot state)."""
     if _EXPLORE:
         return _EXPLORE
-    fig = Figure(figsize=(7.5, 3.4), dpi=90)  # the book's width; fewer pixels per redraw
+    fig = Figure(figsize=(7.5, 3.9), dpi=90)  # the book's width; fewer pixels per redraw
     a1, a2 = fig.subplots(1, 2)
     x = np.arange(1, 3)
     # plain text only (no mathtext): a redraw must not re-parse TeX-like labels
@@ -372,7 +378,9 @@ def _explore_artists() -> dict[str, Any]:
         a.yaxis.set_minor_locator(NullLocator())
     a1.set(xlabel="clustering threshold S", ylabel="probability")
     a2.set(xlabel="hits needed T_h", ylabel="probability")
-    a2.legend(fontsize=8, loc="lower left")
+    # legends below the panels: no setting of the controls can put a curve under them
+    _explore_legend(a1, [art["pfa"], art["exact"], art["eq7"]])
+    _explore_legend(a2, [art["pds"], art["pdt"], art["pft"]])
     a1.set_title("placeholder\nplaceholder", fontsize=9)
     a2.set_title("placeholder\nplaceholder", fontsize=9)
     fig.tight_layout()
@@ -412,7 +420,7 @@ def explore_figure(snr: float = 2.0, log10_p_f: float = -2.5, window: int = 5,
     art["s"].set_xdata([s, s])
     a1.set_xlim(0.5, n + 0.5)
     handles = [art["pfa"], art["exact"]] + ([art["eq7"]] if show_eq7 else [])
-    a1.legend(handles=handles, fontsize=8, loc="center right")
+    _explore_legend(a1, handles)
     # plain-text titles: mathtext with changing numbers would be re-parsed on every redraw
     a1.set_title(f"SNR {snr:g} → P_D = {p_d:.3f}, window {window}×{window}, T_S = "
                  f"{target_pixels}\nat S = {s}: P_FA = {pfa[s - 1]:.1e}, exact "
