@@ -8,7 +8,7 @@ from eotrack.experiments import track_init_ht as exp
 from eotrack.repro import Status, load_claims
 
 EXPECTED = {
-    "track_init.li_fig1": Status.PARTIAL,
+    "track_init.li_fig1": Status.CONTRADICTED,  # the MC refutes "SNR 2 or 3 works"
     "track_init.li_fig2": Status.PARTIAL,
     "track_init.li_experiment": Status.NOT_REPRODUCED,  # 0 of 20 runs: CP upper bound < 50 %
 }
@@ -218,3 +218,44 @@ def test_bad_input_of_the_new_helpers():
     assert p == 0 and lo == 0 and 0.13 < hi < 0.15  # 95 % Clopper-Pearson upper bound
     assert exp.status_experiment({"n_runs": 24, "removed": 0.99, "main_ok": 24,
                                   "curved_ok": 0}) is Status.NOT_REPRODUCED
+
+
+# ---------------------------------------------------------------- the contradicted clauses
+def test_fig1_contradicted_clause_fires_on_evidence_and_only_then():
+    """The clause tests the paper's conclusion "SNR 2 or 3 works" on Monte Carlo windows: it
+    fires at the paper's settings and not where the pixel model does work (SNR 4 and 5)."""
+    kw = dict(p_f=0.003, window=5, target_pixels=4, n_noise=50_000, n_target=50_000, seed=11)
+    f1 = exp.fig1_monte_carlo(snr=[1.0, 2.0, 3.0], **kw)
+    rf = exp.fig1_refutation(f1)
+    assert rf["refuted"] and rf["s_min"] == 3 and max(rf["upper"]) < 0.9
+    assert exp.status_fig1(exp.fig1_measurement(f1)) is Status.CONTRADICTED
+    f1b = exp.fig1_monte_carlo(snr=[1.0, 4.0, 5.0], **kw)
+    rfb = exp.fig1_refutation(f1b)
+    assert not rfb["refuted"] and min(rfb["mc_pda"]) > 0.9
+    assert exp.status_fig1(exp.fig1_measurement(f1b)) is not Status.CONTRADICTED
+
+
+def test_fig1_snr1_reading_is_a_ratio():
+    """'P_DA very close to P_FA' at SNR 1: eq. (7) is ~8,000 x P_FA at S = 3 and fails it."""
+    f1 = exp.fig1_monte_carlo(snr=[1.0, 2.0, 3.0], p_f=0.003, window=5, target_pixels=4,
+                              n_noise=50_000, n_target=50_000, seed=12)
+    r7, rx = exp.fig1_readings(f1, f1.pda_paper), exp.fig1_readings(f1, f1.pda_exact)
+    assert r7["s_min"] == 3 and 7000 < r7["snr_low_ratio"][1.0] < 9000
+    assert 15 < rx["snr_low_ratio"][1.0] < 22
+    assert not r7["snr_low_close"] and not r7["all_hold"] and r7["snr_high_works"]
+
+
+def test_fig2_contradicted_clause_fires_on_evidence_and_only_then(rep):
+    """The paired gap P_DS - P_DT at the smallest P_F: below 0.01 at the paper's 3 x 3 gate
+    (no contradiction) but large with a 9 x 9 gate from P_F = 0.01 (the gap does not close)."""
+    f2 = rep.data["fig2"]
+    assert not exp.fig2_measurement(f2)["refuted"]
+    assert np.all(exp.fig2_gap_bound(f2) <= exp.GAP_LOW)
+    wide = exp.fig2_monte_carlo(snr=2.0, gate=9, frames=7, p_f=np.logspace(-2, -1, 3), n=5_000,
+                                seed=3)
+    lo = exp.fig2_gap_bound(wide)
+    assert lo.shape == (7,) and lo.max() > 0.3
+    m = exp.fig2_measurement(wide)
+    assert m["refuted"] and exp.status_fig2(m) is Status.CONTRADICTED
+    d = wide.mc_pds - wide.mc_pdt  # nested events on the same tracks: never negative
+    assert np.all(d >= 0)

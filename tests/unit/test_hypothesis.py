@@ -267,3 +267,57 @@ def test_held_out_faster_target_and_the_gate(speed, gate, direction, recovered):
         assert np.all(cov >= 0.8)
     else:
         assert np.all(cov < 0.2)
+
+
+def _chain_event(occ: np.ndarray, gate: int, frames: int, min_hits: int, edge: int):
+    """Starts (frame, index) whose nearest-point chain through the gate of the last point
+    reaches ``min_hits`` points within ``frames`` frames (the event of eq. 9, followed directly)."""
+    n_fr, h, w = occ.shape
+    r = gate // 2
+    offs = sorted(((dx, dy) for dx in range(-r, r + 1) for dy in range(-r, r + 1)),
+                  key=lambda o: (o[0] ** 2 + o[1] ** 2, o[1], o[0]))  # ties: row-major, as the initiator
+    pts = [np.column_stack(np.nonzero(occ[k])[::-1]) for k in range(n_fr)]
+    ok, n = set(), 0
+    for k in range(n_fr - frames + 1):
+        for i, (x, y) in enumerate(pts[k]):
+            if not (edge <= x < w - edge and edge <= y < h - edge):
+                continue
+            n += 1
+            cx, cy, hits = x, y, 1
+            for j in range(1, frames):
+                hit = next(((dx, dy) for dx, dy in offs if occ[k + j, cy + dy, cx + dx]), None)
+                if hit is not None:
+                    cx, cy, hits = cx + hit[0], cy + hit[1], hits + 1
+                if hits >= min_hits:
+                    ok.add((k, i))
+                    break
+    return ok, n, pts
+
+
+@pytest.mark.parametrize("gate, frames, min_hits, p_f, shape", [
+    (5, 5, 3, 0.002, (120, 160)),  # held out: a 5x5 gate, T = 5, a rectangular lattice
+    (3, 7, 3, 0.005, (150, 150)),  # the notebook's section 4.7 setting
+])
+def test_held_out_eq9_event_and_the_initiator_below_it(gate, frames, min_hits, p_f, shape):
+    """Eq. (9) is exact for its event (inside the 99.9 % Clopper-Pearson interval); every false
+    track of the initiator starts where that event succeeded, so eq. (9) bounds it from above."""
+    from eotrack.tracking.initiation.temporal import (
+        TemporalContinuityInitiator,
+        TemporalTestConfig,
+    )
+
+    occ = np.random.default_rng(99).random((40, *shape)) < p_f
+    edge = 2 * (gate // 2) + 1
+    ok, n, pts = _chain_event(occ, gate, frames, min_hits, edge)
+    pred = hyp.track_false_alarm(p_f, gate, frames - 1, min_hits - 1)
+    assert mc_agreement(len(ok), n, pred, method="clopper-pearson")
+    fr = [(float(k), p.astype(float)) for k, p in enumerate(pts)]
+    cfg = TemporalTestConfig(gate=gate, frames=frames, min_hits=min_hits, predict="last")
+    starts = {t.hits[0] for t in TemporalContinuityInitiator(cfg).initiate(fr)
+              if t.hits[0][0] <= len(pts) - frames}
+    starts = {(k, i) for k, i in starts
+              if np.all((pts[k][i] >= edge) & (pts[k][i] < np.array(shape[::-1]) - edge))}
+    assert starts and starts <= ok
+    # a wrong gate (one size larger) is rejected by the same interval
+    assert not mc_agreement(len(ok), n, hyp.track_false_alarm(p_f, gate + 2, frames - 1,
+                                                              min_hits - 1))

@@ -23,6 +23,7 @@ from eotrack.tracking import hypothesis as hyp
 
 from .claims import (
     AGREEMENT_METHOD,
+    GAP_LOW,
     evaluate_experiment,
     evaluate_fig1,
     evaluate_fig2,
@@ -30,6 +31,8 @@ from .claims import (
     experiment_table,
     fig1_measurement,
     fig1_readings,
+    fig1_refutation,
+    fig2_gap_bound,
     fig2_measurement,
     fig2_table,
     run_share,
@@ -53,9 +56,9 @@ from .figures import (
     plot_snr_sweep,
 )
 from .scenario import (
+    CLOSE_RATIO,
     CONFIDENCE,
     DEMO_SEED,
-    FAIL_PDA,
     FIG2_P_F,
     HIGH_PDA,
     INITIATOR_P_F,
@@ -87,10 +90,11 @@ from .trials import (
 
 __all__ = [
     "AGREEMENT_METHOD",
+    "CLOSE_RATIO",
     "CONFIDENCE",
     "DEMO_SEED",
-    "FAIL_PDA",
     "FIG2_P_F",
+    "GAP_LOW",
     "HIGH_PDA",
     "INITIATOR_P_F",
     "LOW_PFA",
@@ -113,6 +117,8 @@ __all__ = [
     "fig1_measurement",
     "fig1_monte_carlo",
     "fig1_readings",
+    "fig1_refutation",
+    "fig2_gap_bound",
     "fig2_measurement",
     "fig2_monte_carlo",
     "fig2_table",

@@ -18,8 +18,8 @@ from eotrack.repro import ClaimResult, Status, load_claims
 from eotrack.repro.evaluators import evaluator
 
 from .scenario import (
+    CLOSE_RATIO,
     CONFIDENCE,
-    FAIL_PDA,
     HIGH_PDA,
     LOW_PFA,
     RUN_CONFIDENCE,
@@ -31,6 +31,7 @@ from .trials import Fig1Result, Fig2Result
 __all__ = [
     "AGREEMENT_METHOD",
     "CURVED_COVERAGE",
+    "GAP_LOW",
     "MAIN_COVERAGE",
     "evaluate_experiment",
     "evaluate_fig1",
@@ -39,6 +40,8 @@ __all__ = [
     "experiment_table",
     "fig1_measurement",
     "fig1_readings",
+    "fig1_refutation",
+    "fig2_gap_bound",
     "fig2_measurement",
     "fig2_table",
     "run_share",
@@ -75,47 +78,71 @@ def run_share(k: int, n: int, confidence: float = RUN_CONFIDENCE) -> tuple[float
 
 
 def fig1_readings(res: Fig1Result, pda: np.ndarray) -> dict[str, Any]:
-    """The paper's readings of Fig. 1 evaluated on one family of P_DA curves (``(n_snr, n_s)``)."""
+    """The paper's readings of Fig. 1 evaluated on one family of P_DA curves (``(n_snr, n_s)``).
+
+    ``snr_low_ratio``: P_DA / P_FA at the smallest S with P_FA <= LOW_PFA for each SNR below 2
+    (the SNR-1 reading "P_DA very close to P_FA" holds when it is <= CLOSE_RATIO).
+    """
     pfa = res.pfa
     ok_s = pfa <= LOW_PFA
     best = [float(pda[j, ok_s].max()) if ok_s.any() else 0.0 for j in range(len(res.snr))]
     snr = res.snr
+    i_min = int(np.flatnonzero(ok_s)[0]) if ok_s.any() else len(pfa) - 1
+    ratio = {float(s): float(pda[j, i_min] / pfa[i_min]) if pfa[i_min] > 0 else float("inf")
+             for j, s in enumerate(snr) if s < 2}
     good = all(best[j] >= HIGH_PDA for j, s in enumerate(snr) if s >= 2)
-    bad = all(best[j] < FAIL_PDA for j, s in enumerate(snr) if s < 2)
+    close = all(v <= CLOSE_RATIO for v in ratio.values())
     r = {
         "pfa_decreasing": bool(np.all(np.diff(pfa) < 0) or np.all(np.diff(pfa[pfa > 0]) < 0)),
         "pda_nonincreasing_in_S": bool(np.all(np.diff(pda, axis=1) <= 1e-15)),
         "pda_increasing_in_snr": bool(np.all(np.diff(pda, axis=0) >= -1e-15)),
         "pda_ge_pfa": bool(np.all(pda >= pfa - 1e-15)),
         "best_pda_at_low_pfa": best,
+        "s_min": int(res.s[i_min]),
+        "snr_low_ratio": ratio,
+        "snr_high_works": bool(good),
+        "snr_low_close": bool(close),
     }
     r["all_hold"] = bool(r["pfa_decreasing"] and r["pda_nonincreasing_in_S"]
-                         and r["pda_increasing_in_snr"] and r["pda_ge_pfa"] and good and bad)
+                         and r["pda_increasing_in_snr"] and r["pda_ge_pfa"] and good and close)
     return r
+
+
+def fig1_refutation(f1: Fig1Result) -> dict[str, Any]:
+    """The Monte Carlo test of the paper's conclusion "SNR 2 or 3 works" (claims.toml).
+
+    At the smallest S with P_FA (eq. 4) <= LOW_PFA (the Monte Carlo P_DA is a tail count, so no
+    larger S has a higher one), the Clopper–Pearson upper bound of the Monte Carlo P_DA at each
+    SNR >= 2, family-wise 99.9 % (Bonferroni over those SNRs). ``refuted``: some bound < HIGH_PDA.
+    """
+    ok_s = f1.pfa <= LOW_PFA
+    i_min = int(np.flatnonzero(ok_s)[0])
+    js = [j for j, s in enumerate(f1.snr) if s >= 2]
+    n = f1.mc_n_target
+    k = np.rint(f1.mc_pda[js, i_min] * n)
+    _, hi = binomial_interval(k, n, confidence=1 - (1 - CONFIDENCE) / len(js),
+                              method=AGREEMENT_METHOD)
+    hi = np.atleast_1d(np.asarray(hi, dtype=float))
+    return {"s_min": int(f1.s[i_min]), "snr": [float(f1.snr[j]) for j in js],
+            "mc_pda": [float(f1.mc_pda[j, i_min]) for j in js],
+            "upper": [float(v) for v in hi], "refuted": bool(np.any(hi < HIGH_PDA))}
 
 
 def fig1_measurement(f1: Fig1Result) -> dict[str, bool]:
     """The small measurement :func:`status_fig1` decides on.
 
-    ``reversed`` is the Monte Carlo contradicting the paper's ordering P_DA > P_FA: some
-    (S, SNR) whose estimated P_DA lies below P_FA with the two 99.9 % intervals disjoint
-    (target and noise-only windows are independent draws of the same pixel model).
+    ``refuted``: the Monte Carlo of the stated pixel model refutes the paper's conclusion that
+    SNR 2 or 3 allows low P_FA with high P_DA (:func:`fig1_refutation`).
     """
-    sel = f1.s <= S_CHECK
-    n = f1.mc_n_target
-    _, hi_d = binomial_interval(np.rint(f1.mc_pda[:, sel] * n), n, confidence=CONFIDENCE,
-                                method=AGREEMENT_METHOD)
-    lo_f, _ = binomial_interval(np.rint(f1.mc_pfa[sel] * f1.mc_n_noise), f1.mc_n_noise,
-                                confidence=CONFIDENCE, method=AGREEMENT_METHOD)
     return {"readings_paper": fig1_readings(f1, f1.pda_paper)["all_hold"],
             "readings_exact": fig1_readings(f1, f1.pda_exact)["all_hold"],
             "mc_agrees_exact": bool(f1.agreement("exact", s_max=S_CHECK, familywise=True, method=AGREEMENT_METHOD)),
             "mc_agrees_pfa": bool(f1.agreement("pfa", s_max=S_CHECK, familywise=True, method=AGREEMENT_METHOD)),
-            "reversed": bool(np.any(hi_d < lo_f[None, :]))}
+            "refuted": fig1_refutation(f1)["refuted"]}
 
 
 _F1_OK = {"readings_paper": True, "readings_exact": True, "mc_agrees_exact": True,
-          "mc_agrees_pfa": True, "reversed": False}
+          "mc_agrees_pfa": True, "refuted": False}
 
 
 @evaluator("track_init.li_fig1", cases=[
@@ -123,11 +150,13 @@ _F1_OK = {"readings_paper": True, "readings_exact": True, "mc_agrees_exact": Tru
     ({**_F1_OK, "readings_exact": False}, Status.PARTIAL),
     ({**_F1_OK, "readings_exact": False, "mc_agrees_exact": False}, Status.NOT_REPRODUCED),
     ({**_F1_OK, "readings_paper": False}, Status.NOT_REPRODUCED),
-    ({**_F1_OK, "readings_exact": False, "reversed": True}, Status.CONTRADICTED),
+    ({**_F1_OK, "readings_exact": False, "refuted": True}, Status.CONTRADICTED),
+    ({**_F1_OK, "readings_paper": False, "readings_exact": False, "refuted": True},
+     Status.CONTRADICTED),
 ])
 def status_fig1(m: dict[str, bool]) -> Status:
     """Status of ``track_init.li_fig1`` from :func:`fig1_measurement` (claims.toml criterion)."""
-    if m["reversed"]:
+    if m["refuted"]:
         return Status.CONTRADICTED
     mc = m["mc_agrees_exact"] and m["mc_agrees_pfa"]
     if m["readings_paper"] and m["readings_exact"] and mc:
@@ -144,57 +173,91 @@ def evaluate_fig1(f1: Fig1Result) -> ClaimResult:
     status = status_fig1(m)
     r_paper = fig1_readings(f1, f1.pda_paper)
     r_exact = fig1_readings(f1, f1.pda_exact)
+    rf = fig1_refutation(f1)
     a_exact = f1.agreement("exact", s_max=S_CHECK, familywise=True, method=AGREEMENT_METHOD)
     a_pfa = f1.agreement("pfa", s_max=S_CHECK, familywise=True, method=AGREEMENT_METHOD)
     a_paper = f1.agreement("paper", s_max=S_CHECK, familywise=True, method=AGREEMENT_METHOD)
     bp = ", ".join(f"SNR {s:g}: {v:.3f}" for s, v in zip(f1.snr, r_paper["best_pda_at_low_pfa"]))
     be = ", ".join(f"SNR {s:g}: {v:.3g}" for s, v in zip(f1.snr, r_exact["best_pda_at_low_pfa"]))
+    rat = "; ".join(f"SNR {s:g}: eq. (7) {r_paper['snr_low_ratio'][s]:.3g}, exact count "
+                    f"{r_exact['snr_low_ratio'][s]:.3g}" for s in r_paper["snr_low_ratio"])
+    mcb = ", ".join(f"SNR {s:g}: {v:.3f} (upper bound {u:.3f})"
+                    for s, v, u in zip(rf["snr"], rf["mc_pda"], rf["upper"]))
     ours = (f"eqs. (4)/(7) readings hold: {r_paper['all_hold']}; best P_DA with P_FA <= "
-            f"{LOW_PFA:g}: {bp}. Exact count: {be}. Monte Carlo ({f1.mc_n_target:,} windows per "
+            f"{LOW_PFA:g}: {bp}. Exact count: {be}. P_DA / P_FA at S = {rf['s_min']} "
+            f"(reading 'very close' if <= {CLOSE_RATIO:g}): {rat}. Monte Carlo "
+            f"({f1.mc_n_target:,} windows per "
             f"SNR) inside the family-wise 99.9 % Clopper-Pearson intervals (Bonferroni over the "
             f"{a_exact.n_points} S<=12 points) of the exact count at "
             f"{a_exact.fraction_inside:.0%} of points (P_FA eq. 4: "
             f"{a_pfa.fraction_inside:.0%}) and of eq. (7) at {a_paper.fraction_inside:.0%}; "
-            f"Monte Carlo P_DA below P_FA (disjoint intervals) anywhere: {m['reversed']}")
+            f"Monte Carlo P_DA at S = {rf['s_min']}: {mcb} (family-wise 99.9 %, need >= "
+            f"{HIGH_PDA:g} for the 'SNR 2 or 3 works' reading)")
     if status is Status.REPRODUCED:
         note = ""
+    elif status is Status.CONTRADICTED:
+        note = (f"Fig. 1 as printed (eqs. 4, 7) shows the SNR 2-3 readings, but eq. (6) gives "
+                f"all W_S pixels the probability P_1 = P_D + P_0 (P_1 = "
+                f"{', '.join(f'{v:.3f}' for v in f1.p1)}), and the Monte Carlo of the stated "
+                f"pixel model follows the exact count, not eq. (7). With T_S = "
+                f"{f1.settings['target_pixels']} target pixels its P_DA at the smallest S "
+                f"with P_FA <= {LOW_PFA:g} (S = {rf['s_min']}) is {mcb}: the paper's conclusion "
+                "that SNR 2 or 3 keeps P_FA low and P_DA high is refuted by its own pixel "
+                "model (with the adopted SNR link). The clause that decides this was made "
+                "testable after results were seen (claims.toml history).")
     elif status is Status.PARTIAL:
         note = (f"Fig. 1 as printed (eqs. 4, 7) shows every reading. But eq. (6) gives all "
                 f"W_S pixels the probability P_1 = P_D + P_0 (P_1 = "
                 f"{', '.join(f'{v:.3f}' for v in f1.p1)}), and the Monte Carlo of the stated "
                 f"pixel model follows the exact count, not eq. (7): with T_S = "
                 f"{f1.settings['target_pixels']} target pixels the best P_DA at P_FA <= "
-                f"{LOW_PFA:g} is only {be} — the 'SNR 2-3 works' reading does not survive the "
-                "exact count.")
+                f"{LOW_PFA:g} is only {be}.")
     else:
-        note = (f"readings (paper formulas) hold: {r_paper['all_hold']}; Monte Carlo agrees with "
-                f"the exact count: {a_exact.all_inside}, with eq. (4): {a_pfa.all_inside}; "
-                f"ordering reversed by the Monte Carlo: {m['reversed']}")
+        note = (f"readings (paper formulas) hold: {r_paper['all_hold']} (SNR 2-3: "
+                f"{r_paper['snr_high_works']}, SNR 1 close: {r_paper['snr_low_close']}); Monte "
+                f"Carlo agrees with the exact count: {a_exact.all_inside}, with eq. (4): "
+                f"{a_pfa.all_inside}; 'SNR 2 or 3 works' refuted by the Monte Carlo: "
+                f"{m['refuted']}")
     return ClaimResult.from_claim(claim, ours=ours, status=status, note=note)
+
+
+#: The gap P_DS - P_DT the paper's "the tracks built are then true tracks" allows at P_F = 1e-4
+#: (claims.toml: the partial band and the contradicted clause).
+GAP_LOW = 0.01
+
+
+def fig2_gap_bound(f2: Fig2Result) -> np.ndarray:
+    """Clopper–Pearson lower bound of the paired Monte Carlo gap P_DS − P_DT at the smallest P_F,
+    one per T_h, family-wise 99.9 % (Bonferroni over the T_h).
+
+    On the same simulated tracks a true track (≥ T_h target detections) is also a sequence
+    detection, so the difference of the two counts is the number of tracks that pass the
+    sequence test but not the true-track test: a proportion, with its binomial interval.
+    """
+    d = f2.mc_pds[:, 0] - f2.mc_pdt[:, 0]
+    k = np.rint(np.clip(d, 0.0, 1.0) * f2.mc_n)
+    lo, _ = binomial_interval(k, f2.mc_n, confidence=1 - (1 - CONFIDENCE) / len(d),
+                              method=AGREEMENT_METHOD)
+    return np.atleast_1d(np.asarray(lo, dtype=float))
 
 
 def fig2_measurement(f2: Fig2Result) -> dict[str, Any]:
     """The small measurement :func:`status_fig2` decides on.
 
-    ``reversed``: the paired Monte Carlo difference P_DS − P_DT (both events counted on the same
-    simulated tracks) negative with its 99.9 % interval excluding 0 at some (P_F, T_h). In the
-    gate model the true-track event is contained in the sequence event, so the difference is
-    the probability of "sequence but not true track" and its interval is that of a
-    proportion; a negative estimate would mean the two events are not nested.
+    ``refuted``: at the smallest P_F the paired Monte Carlo gap P_DS − P_DT has, for some T_h,
+    a family-wise 99.9 % lower bound above :data:`GAP_LOW` (:func:`fig2_gap_bound`) — the gap
+    does not close, against the paper's conclusion.
     """
     gap = f2.pds - f2.pdt  # (T_h, P_F)
-    d = f2.mc_pds - f2.mc_pdt
-    k = np.rint(np.abs(d) * f2.mc_n)
-    lo, _ = binomial_interval(k, f2.mc_n, confidence=CONFIDENCE, method=AGREEMENT_METHOD)
     return {"ge": bool(np.all(f2.pds >= f2.pdt - 1e-15)),
             "monotone": bool(np.all(np.diff(gap, axis=1) >= -1e-12)),
             "mc_agrees": all(bool(f2.agreement(w, familywise=True, method=AGREEMENT_METHOD))
                              for w in ("pds", "pdt", "pft")),
             "gap_low": float(gap[:, 0].max()),
-            "reversed": bool(np.any((d < 0) & (lo > 0)))}
+            "refuted": bool(np.any(fig2_gap_bound(f2) > GAP_LOW))}
 
 
-_F2_OK = {"ge": True, "monotone": True, "mc_agrees": True, "gap_low": 1e-3, "reversed": False}
+_F2_OK = {"ge": True, "monotone": True, "mc_agrees": True, "gap_low": 1e-3, "refuted": False}
 
 
 @evaluator("track_init.li_fig2", cases=[
@@ -203,15 +266,15 @@ _F2_OK = {"ge": True, "monotone": True, "mc_agrees": True, "gap_low": 1e-3, "rev
     ({**_F2_OK, "monotone": False, "gap_low": 0.05}, Status.NOT_REPRODUCED),
     ({**_F2_OK, "mc_agrees": False}, Status.NOT_REPRODUCED),
     ({**_F2_OK, "ge": False}, Status.NOT_REPRODUCED),
-    ({**_F2_OK, "reversed": True}, Status.CONTRADICTED),
+    ({**_F2_OK, "monotone": False, "gap_low": 0.05, "refuted": True}, Status.CONTRADICTED),
 ])
 def status_fig2(m: dict[str, Any]) -> Status:
     """Status of ``track_init.li_fig2`` from :func:`fig2_measurement` (claims.toml criterion)."""
-    if m["reversed"]:
+    if m["refuted"]:
         return Status.CONTRADICTED
     if m["ge"] and m["monotone"] and m["mc_agrees"]:
         return Status.REPRODUCED
-    if m["ge"] and m["mc_agrees"] and m["gap_low"] < 0.01:
+    if m["ge"] and m["mc_agrees"] and m["gap_low"] < GAP_LOW:
         return Status.PARTIAL
     return Status.NOT_REPRODUCED
 
@@ -225,6 +288,8 @@ def evaluate_fig2(f2: Fig2Result, *, min_hits: int) -> ClaimResult:
     gap = f2.pds - f2.pdt  # (T_h, P_F)
     peak_pf = p_f[np.argmax(gap, axis=1)]
     ag = {w: f2.agreement(w, familywise=True, method=AGREEMENT_METHOD) for w in ("pds", "pdt", "pft")}
+    mc_gap0 = f2.mc_pds[:, 0] - f2.mc_pdt[:, 0]
+    lo0 = fig2_gap_bound(f2)
     i = min_hits - 1
     ours = (f"P_DS >= P_DT everywhere: {m['ge']}; gap P_DS - P_DT at T_h = {min_hits}: "
             f"{gap[i, -1]:.3f} at P_F = {p_f[-1]:g}, peak {gap[i].max():.3f} at "
@@ -234,9 +299,15 @@ def evaluate_fig2(f2: Fig2Result, *, min_hits: int) -> ClaimResult:
             f"99.9 % Clopper-Pearson intervals (Bonferroni over each curve's {ag['pds'].n_points} points) "
             f"of eqs. (12)/(13)/(9) at " + "/".join(
                 f"{a.fraction_inside:.0%}" for a in ag.values()) + " of points; paired Monte "
-            f"Carlo P_DS - P_DT significantly negative anywhere: {m['reversed']}")
+            f"Carlo gap P_DS - P_DT at P_F = {p_f[0]:g}: largest {float(np.max(mc_gap0)):.1e}, "
+            f"family-wise 99.9 % lower bounds up to {float(np.max(lo0)):.1e} (contradicted if "
+            f"above {GAP_LOW:g})")
     if status is Status.REPRODUCED:
         note = ""
+    elif status is Status.CONTRADICTED:
+        note = (f"At P_F = {p_f[0]:g} the paired Monte Carlo gap P_DS - P_DT stays above "
+                f"{GAP_LOW:g} (lower bounds " + ", ".join(f"{v:.2g}" for v in lo0)
+                + " for T_h = 1..7): the gap does not close as the paper says.")
     elif status is Status.PARTIAL:
         note = ("P_DS >= P_DT holds everywhere and the gap vanishes as P_F falls "
                 f"(<= {m['gap_low']:.1e} at P_F = {p_f[0]:g}), but not monotonically over "
@@ -247,7 +318,7 @@ def evaluate_fig2(f2: Fig2Result, *, min_hits: int) -> ClaimResult:
     else:
         note = (f"P_DS >= P_DT: {m['ge']}, gap at smallest P_F {m['gap_low']:.2e}, MC agreement "
                 "(family-wise) " + "/".join(f"{a.fraction_inside:.0%}" for a in ag.values())
-                + f", reversed by the Monte Carlo: {m['reversed']}")
+                + f", gap not closing (Monte Carlo): {m['refuted']}")
     return ClaimResult.from_claim(claim, ours=ours, status=status, note=note)
 
 
