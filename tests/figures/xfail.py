@@ -29,7 +29,6 @@ XFAIL: dict[str, str] = {
     "notebook:03_track_init_hypothesis_testing": "P03",  # not-linted
     "notebook:04_track_init_logic_hough": "P04",  # not-linted
     "notebook:05_akf_star_tracking": "P05",  # not-linted
-    "notebook:06_ransac_crlb_pose": "P06",  # not-linted
     "notebook:07_capstone_geo_surveillance": "CAP",  # not-linted 6
     "report:akf_star/fig6_mean_tracking_error": "P05",  # small-text 51, too-wide 1
     "report:akf_star/fig7_success_rate": "P05",  # small-text 52, too-wide 1
