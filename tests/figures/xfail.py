@@ -21,7 +21,6 @@ XFAIL: dict[str, str] = {
     "nocase:akf_star.plot_sage_husa": "P05",  # no lint case yet
     "nocase:akf_star.plot_ship_attitude": "P05",  # no lint case yet
     "nocase:akf_star.plot_success_curves": "P05",  # no lint case yet
-    "nocase:ransac_crlb_pose.plot_error_ecdf": "P06",  # no lint case yet
     "nocase:track_init_hough.plot_scene_tracks": "P04",  # no lint case yet
     # notebooks: stored before the kernel recorded the lint's verdict (2026-12-02 00:00)
     "notebook:01_wransac_trajectory_prediction": "P01",  # not-linted 12
