@@ -16,6 +16,8 @@ RIGHT = {
     "capstone.2": lambda: 7.292115e-5 * 20.0 * RAD * np.cos(np.radians(5.0)) / 15.0,
     "capstone.3": lambda: 10 ** (-0.4 * (12.5 - 21.0)) / (2 * np.pi) / np.sqrt(6400 + 64),
     "capstone.4": lambda: "B",
+    "capstone.5": lambda: _p_in(0.5, np.sqrt(2) * 0.3),
+    "capstone.6": lambda: 1.5 * _max_rate() / 5.0,
 }
 
 WRONG = {
@@ -23,7 +25,30 @@ WRONG = {
     "capstone.2": lambda: 15.04 * 20.0,  # arcseconds, not pixels
     "capstone.3": lambda: 10 ** (-0.4 * (12.5 - 21.0)) / np.sqrt(6400),  # total flux, not peak
     "capstone.4": lambda: "D",
+    "capstone.5": lambda: _p_in(0.5, 0.3),  # one point's σ, not √2 σ
+    "capstone.6": lambda: 1.5 * _max_rate() / 15.0,  # the 15″/px gate
 }
+
+WRONG_MORE = {
+    "capstone.5": [lambda: 1 - _p_in(0.5, np.sqrt(2) * 0.3),  # outside, not inside
+                   lambda: 0.99],  # the true pair's probability
+    "capstone.6": [lambda: _max_rate() / 5.0,  # no margin
+                   lambda: 1.5 * _max_rate()],  # ″/s, not px/s
+}
+
+
+def _p_in(d0, sigma_e):
+    """P(|d0 + ε| < g), ε ~ N(0, sigma_e²), g the χ²(1) 99 % gate of √2 × 0.3 px."""
+    from scipy.stats import chi2, norm
+
+    g = np.sqrt(2) * 0.3 * np.sqrt(chi2.ppf(0.99, 1))
+    return norm.cdf((g - d0) / sigma_e) - norm.cdf((-g - d0) / sigma_e)
+
+
+def _max_rate():
+    from eotrack.experiments import capstone as C
+
+    return float(C.expected_rates().to_numpy().max())
 
 
 def test_at_least_four_exercises():
@@ -41,7 +66,14 @@ def test_wrong_answer_fails(ex):
     assert not check(ex, WRONG[ex]())
 
 
-@pytest.mark.parametrize("ex", ["capstone.1", "capstone.2", "capstone.3"])
+@pytest.mark.parametrize("ex", sorted(WRONG_MORE))
+def test_more_wrong_answers_fail(ex):
+    for wrong in WRONG_MORE[ex]:
+        assert not check(ex, wrong())
+
+
+@pytest.mark.parametrize("ex", ["capstone.1", "capstone.2", "capstone.3", "capstone.5",
+                                "capstone.6"])
 def test_numeric_bad_type_raises(ex):
     with pytest.raises(TypeError):
         check(ex, "ten")

@@ -1,17 +1,23 @@
-"""Capstone chain: configuration, helpers, stage errors, backend equality."""
+"""Capstone chain: configuration, cluster, gates, eclipse criterion, bad input, backend equality."""
 
 from __future__ import annotations
 
 import numpy as np
+import pandas as pd
 import pytest
 from eotrack.experiments import capstone as C
 from eotrack.montecarlo import TrialRunner, trial_generators
-from hypothesis import given, settings
-from hypothesis import strategies as st
 
-#: A short night around XM-3's eclipse (umbra entry ≈ 05:25 UTC): cheap but complete.
-SHORT = C.with_changes(night_start_utc="2006-03-25T03:00:00", night_hours=3.5,
-                       visit_interval_s=1800.0)
+#: The QUICK night (the cluster field around XM-3's eclipse): cheap but complete.
+QUICK = C.quick_config()
+
+
+def _bursts(cfg, keep=lambda b: True, limit=None):
+    """Run observe_burst on the plan's bursts that ``keep`` selects (as run_night would)."""
+    plan = C.make_plan(cfg)
+    gens = trial_generators(cfg.seed, len(plan.bursts))
+    idx = [i for i, b in enumerate(plan.bursts) if keep(b)][:limit]
+    return plan, [C.observe_burst(gens[i], plan) for i in idx]
 
 
 def test_config_bad_input():
@@ -23,7 +29,41 @@ def test_config_bad_input():
         C.CapstoneConfig(exposure_s=30.0)
     with pytest.raises(ValueError, match="burst"):
         C.CapstoneConfig(visit_interval_s=60.0)
+    with pytest.raises(ValueError, match="parent 25954 must be one of norad_ids"):
+        C.CapstoneConfig(norad_ids=(28626,), cluster=(C.ClusterMember(25954, 0.1),))
+    with pytest.raises(TypeError, match="cluster"):
+        C.CapstoneConfig(cluster=((28626, 0.1, 0.0),))
+    with pytest.raises(ValueError, match="astrometry_mag"):
+        C.CapstoneConfig(astrometry_mag=9.0)
+    with pytest.raises(ValueError, match="cloud_transmission"):
+        C.CapstoneConfig(cloud_transmission=1.5)
+    with pytest.raises(ValueError, match="d_mean_anomaly_deg"):
+        C.ClusterMember(28626, d_mean_anomaly_deg=float("nan"))
     assert C.CapstoneConfig().fov_deg == pytest.approx(256 * 15 / 3600)
+
+
+def test_cluster_members_share_the_field():
+    cfg = C.CapstoneConfig()
+    assert cfg.object_names[3:] == tuple(m.name for m in cfg.cluster)
+    assert cfg.field_of == (0, 1, 2, 1, 1)
+    # zero offsets reproduce the parent's SGP4 orbit
+    from eotrack.astro import satellite
+
+    s, m = satellite(28626), C.member_satellite(C.ClusterMember(28626))
+    np.testing.assert_allclose(m.sgp4(2453819.5, 0.3)[1], s.sgp4(2453819.5, 0.3)[1], atol=1e-3)
+    plan = C.make_plan(QUICK)
+    b = plan.bursts[0]
+    assert b.objs == (0, 1, 2) and b.target_xy.shape == (3, QUICK.burst_frames, 2)
+    sep = np.hypot(*(b.target_xy[1:, 0] - b.target_xy[0, 0]).T) * QUICK.pixel_scale_arcsec
+    assert np.all((sep > 0.05 * 3600) & (sep < 0.3 * 3600))  # a few tenths of a degree
+
+
+def test_believed_pointing_is_off_by_the_mount_error():
+    plan = C.make_plan(QUICK)
+    ang = np.array([np.degrees(np.arccos(np.clip(b.R[0][2] @ b.R_believed[0][2], -1, 1))) * 3600
+                    for b in plan.bursts])
+    assert ang.max() <= np.sqrt(2) * QUICK.pointing_error_arcsec + 1
+    assert np.median(ang) > 20  # the chain cannot use the believed attitude as the truth
 
 
 def test_burst_index():
@@ -31,38 +71,6 @@ def test_burst_index():
     assert [C.burst_index(g) for g in gens] == [0, 1, 2, 3, 4]
     with pytest.raises(ValueError, match="spawn"):
         C.burst_index(np.random.default_rng(1))
-
-
-def test_separate_targets_by_motion_and_catalogue():
-    gx, gy = np.meshgrid(np.arange(40.0, 200, 15), np.arange(40.0, 200, 15))
-    stars = np.c_[gx.ravel(), gy.ravel()][:30]
-    drift = np.array([[-10.0, 0.0]] * 3)
-    target = np.array([120.3, 80.7])
-    det, sxy = [], []
-    for k in range(4):
-        s = stars + k * np.array([-10.0, 0.0])
-        det.append(np.vstack([s, target + np.array([0.05 * k, 0.0])]))
-        sxy.append(s[:10])  # only 10 stars are catalogued
-    is_cat, is_cand = C.separate_targets(det, sxy, drift, 256)
-    for k in range(4):
-        assert is_cat[k][:10].all() and not is_cat[k][10:].any()
-        assert np.flatnonzero(is_cand[k]).tolist() == [30]
-    with pytest.raises(ValueError, match="drift"):
-        C.separate_targets(det, sxy, drift[:2], 256)
-
-
-@settings(max_examples=40, deadline=None)
-@given(st.integers(0, 40), st.integers(0, 40), st.floats(-30, 30), st.integers(0, 2**31))
-def test_separate_targets_masks_are_disjoint(n_stars, n_other, dx, seed):
-    rng = np.random.default_rng(seed)
-    stars = rng.uniform(0, 128, (n_stars, 2))
-    det = [np.vstack([stars + k * np.array([dx, 0.0]), rng.uniform(0, 128, (n_other, 2))])
-           for k in range(3)]
-    sxy = [d[: n_stars // 2] for d in det]
-    is_cat, is_cand = C.separate_targets(det, sxy, np.array([[dx, 0.0]] * 2), 128)
-    for k in range(3):
-        assert is_cat[k].shape == is_cand[k].shape == (len(det[k]),)
-        assert not np.any(is_cat[k] & is_cand[k])
 
 
 def test_bad_config_types():
@@ -83,24 +91,101 @@ def test_simple_formulas():
     with pytest.raises(ValueError, match="dec_deg"):
         C.sidereal_drift_px(dec_deg=100)
     assert C.target_peak_snr(C.with_changes(sky_e=1600)) < C.target_peak_snr()
+    # the epipolar gate is the χ²(1) 99 % bound of √2 σ
+    assert C.epipolar_gate_px(sigma_px=0.3) == pytest.approx(np.sqrt(2) * 0.3 * 2.5758, rel=1e-3)
+    with pytest.raises(ValueError, match="alpha"):
+        C.epipolar_gate_px(alpha=1.0)
+    # CRLB of the centroid: grows with the sky, shrinks with the flux
+    assert C.expected_ray_sigma_px(C.with_changes(sky_e=6400)) > C.expected_ray_sigma_px()
+    assert 0.03 < C.expected_ray_sigma_px() < 0.1
+    # completeness expected from the S/N: ≈ 1 at the default sky, ≈ half where S/N ≈ threshold
+    assert C.expected_completeness() > 0.99
+    assert 0.2 < C.expected_completeness(C.with_changes(sky_e=6400)) < 0.8
+    assert C.expected_recall(C.with_changes(sky_e=6400)) < C.expected_completeness(
+        C.with_changes(sky_e=6400))
+
+
+def test_velocity_gate_follows_pixel_scale_and_rates():
+    cfg = C.CapstoneConfig()
+    rates = C.expected_rates(cfg)
+    assert rates["14128"].max() > 2.0 > rates["28626"].max()  # inclined vs station-kept ″/s
+    g15 = C.velocity_gate(cfg)
+    g5 = C.velocity_gate(C.with_changes(cfg, pixel_scale_arcsec=5.0))
+    assert g5 == pytest.approx(3 * g15)
+    assert g5 > rates["14128"].max() / 5.0  # the inclined object stays inside the gate
+    # a field of station-kept objects only: the gate is the floor of 2 px per burst
+    assert C.velocity_gate(QUICK) == pytest.approx(2.0 / (4 * QUICK.frame_interval_s))
+
+
+def test_inclined_object_keeps_its_recall_at_5_arcsec_per_px():
+    # issue #30: with the old fixed 0-0.5 px/s gate, 14128's recall fell to 0.58 at 5″/px
+    cfg = C.with_changes(norad_ids=(14128,), cluster=(), pixel_scale_arcsec=5.0,
+                         astrometry_mag=13.0, star_limit_mag=13.5, cloud_frames=(),
+                         night_start_utc="2006-03-25T07:00:00", night_hours=2.0)
+    _, res = _bursts(cfg, keep=lambda b: b.target_flux[0].min() > 0, limit=6)
+    assert len(res) == 6 and all(r.solved.all() for r in res)
+    found = [any(t["true_obj"] == 0 for t in r.tracks) for r in res]
+    assert np.mean(found) >= 5 / 6
+
+
+def test_predicted_false_association_is_a_probability_and_larger_in_the_cluster():
+    plan = C.make_plan(C.CapstoneConfig())
+    fa = C.predicted_false_association(plan)
+    assert fa["p_wrong_in_gate"].between(0, 1).all()
+    assert fa[fa["cluster"]]["p_wrong_in_gate"].mean() > fa[~fa["cluster"]][
+        "p_wrong_in_gate"].mean()
+    wide = C.predicted_false_association(plan, gate_px=50.0)
+    assert wide["p_wrong_in_gate"].mean() > fa["p_wrong_in_gate"].mean()
 
 
 def test_stage_sky_object_never_rises():
     # 24208 (ITALSAT 2, near 20°W) is below the horizon of Haleakala and Socorro
     with pytest.raises(ValueError, match=r"stage 'sky'.*24208 never rises"):
-        C.make_plan(C.with_changes(norad_ids=(25954, 24208)))
+        C.make_plan(C.with_changes(norad_ids=(25954, 24208), cluster=()))
 
 
 def test_stage_prediction_night_without_eclipse():
-    # midsummer: GEO objects never enter the umbra
-    cfg = C.with_changes(night_start_utc="2006-06-21T00:30:00", norad_ids=(25954,))
-    with pytest.raises(ValueError, match=r"stage 'prediction'.*no eclipse"):
+    # midsummer: GEO objects never enter the umbra — refused before any frame is rendered
+    cfg = C.with_changes(night_start_utc="2006-06-21T00:30:00", norad_ids=(25954,), cluster=())
+    with pytest.raises(ValueError, match=r"stage 'prediction'.*does not enter the umbra"):
         C.run_night(cfg)
 
 
+def test_eclipse_check_names_the_missing_tracklets_after_the_umbra():
+    # a night that ends in XM-3's umbra: visits before the entry, none after it while sunlit
+    cfg = C.with_changes(QUICK, night_hours=2.6)
+    plan = C.make_plan(cfg)
+    with pytest.raises(ValueError, match=r"stage 'prediction'.*28626 from Socorro NM: 8 planned "
+                                         r"visits before the umbra entry at 05:26 UTC but none "
+                                         r"after it"):
+        C.eclipse_check(plan)
+    st = C.eclipse_status(plan)
+    assert not st["ok"].any() and st["reason"].str.len().gt(0).all()
+    # the same criterion on a run's tracklets says "tracklets"
+    times = {(0, 1): np.arange(6) * 900.0 + 1000.0}
+    with pytest.raises(ValueError, match=r"6 tracklets before the umbra entry .* but none after"):
+        C.eclipse_check(plan, times)
+
+
+def test_bad_input_clouded_frame_and_unresolved_objects_do_not_stop_the_night():
+    close = C.ClusterMember(28626, d_mean_anomaly_deg=0.0003)  # ≈ 1″ from XM-3: unresolved
+    cfg = C.with_changes(QUICK, cluster=(close,), cloud_frames=((0, 0, 0, 2),))
+    plan, res = _bursts(cfg, keep=lambda b: b.station == 0, limit=2)
+    fail = pd.DataFrame([f for r in res for f in r.failures], columns=["frame", "stage", "why"])
+    clouded = fail[fail["stage"] == "astrometry"]
+    assert list(clouded["frame"]) == [C.frame_id(plan, plan.bursts[0], 2)]
+    assert clouded["why"].str.contains("too few").all()
+    unres = fail[fail["stage"] == "association"]
+    assert len(unres) >= 5 and unres["why"].str.contains("unresolved").all()
+    assert unres["why"].str.contains("28626").all()
+    assert not res[0].solved[2] and res[0].solved[[0, 1, 3, 4]].all()
+    assert all(t["unresolved"] for r in res for t in r.tracks if t["true_obj"] >= 0)
+
+
 def test_stage_extraction_no_targets():
-    cfg = C.with_changes(SHORT, target_mag=30.0, norad_ids=(28626,))
-    with pytest.raises(ValueError, match=r"stage 'extraction': no target detected"):
+    cfg = C.with_changes(QUICK, target_mag=30.0, night_hours=2.0, night_start_utc=
+                         "2006-03-25T06:35:00")
+    with pytest.raises(ValueError, match=r"stage 'extraction': no object detected"):
         C.run_night(cfg)
     res = C.run_night(cfg, strict=False)
     assert np.isnan(res.budget["value"].iloc[-1])
@@ -108,31 +193,51 @@ def test_stage_extraction_no_targets():
 
 def test_run_night_bad_runner():
     with pytest.raises(TypeError, match="runner"):
-        C.run_night(SHORT, runner="serial")
+        C.run_night(QUICK, runner="serial")
     with pytest.raises(TypeError, match="config"):
         C.run_night({"sky_e": 1})
 
 
-def test_short_night_serial_equals_local_cluster():
+@pytest.fixture(scope="module")
+def quick_night():
+    return C.run_night(QUICK)
+
+
+def test_quick_night_every_stage(quick_night):
+    n = quick_night
+    val = dict(zip(n.budget["metric"], n.budget["value"]))
+    assert val["frames left out (no plate solution)"] == 1  # the clouded frame
+    assert list(n.failures["stage"]) == ["astrometry"]
+    assert val["plate solution: true error at the objects (RMS)"] < 0.5 * QUICK.pixel_scale_arcsec
+    assert val["correct pairs, cluster field"] == 1.0
+    assert val["GOSPA per burst (mean, c = 5 px)"] < 1.0
+    # σ_R ≈ R²σ_θ/B⊥ with the measured in-plane errors matches the measured range error
+    s = n.sigma
+    assert 0.6 < s["range_rms_km"] / s["measured_km"] < 1.6
+    assert s["assumed_km"] > s["measured_km"]  # the old 0.2-px guess was pessimistic
+    orbit = n.prediction[n.prediction["method"] == "orbit"]
+    assert len(orbit) >= 3 and orbit["rms_arcsec"].max() < 30.0
+    sc = C.scorecard(n)
+    assert {"extraction", "astrometry", "triangulation", "association"} <= set(sc["stage"])
+
+
+def test_quick_night_serial_equals_local_cluster(quick_night):
     distributed = pytest.importorskip("distributed")
-    cfg = C.with_changes(SHORT, norad_ids=(28626, 25954))
-    serial = C.run_night(cfg, strict=False)  # 30-min visits: too few points to predict
-    assert serial.budget.set_index("metric")["value"]["correct pairs"] == 1.0
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
                                   dashboard_address=None) as cl, distributed.Client(cl) as cli:
-        dask = C.run_night(cfg, runner=TrialRunner(scheduler=cli, progress=False),
-                           strict=False)
-    a = serial.budget["value"].to_numpy(float)
+        dask = C.run_night(QUICK, runner=TrialRunner(scheduler=cli, progress=False))
+    a = quick_night.budget["value"].to_numpy(float)
     b = dask.budget["value"].to_numpy(float)
     assert np.array_equal(a, b, equal_nan=True)
+    pd.testing.assert_frame_equal(quick_night.prediction, dask.prediction)
 
 
 def _fake_sweep():
-    import pandas as pd
     from eotrack.experiments.capstone import figures as F
 
     rows = [k for k, _ in F._FRACTIONS] + ["triangulation · RMS position error"] + [
-        f"prediction · {m}: RMS error through the eclipse" for m in C.PREDICTORS] + [
+        f"prediction · {m} (catalogue): RMS error through the eclipse" for m in C.PREDICTORS] + [
+        "prediction · orbit (catalogue, both stations): RMS error through the eclipse",
         "target peak S/N"]
     values = np.random.default_rng(0).uniform(0.1, 1.0, (len(rows), 3))
     return pd.DataFrame(values, index=rows, columns=[400.0, 1600.0, 6400.0])
@@ -154,8 +259,6 @@ def test_sweep_explorer_updates_one_figure():
 
 
 def test_sweep_explorer_bad_input():
-    import pandas as pd
-
     with pytest.raises(ValueError, match="sweep"):
         C.sweep_explorer(pd.DataFrame())
     draw = C.sweep_explorer(_fake_sweep())

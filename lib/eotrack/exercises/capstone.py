@@ -23,6 +23,23 @@ def _snr_6400():
     return C.target_peak_snr(C.with_changes(sky_e=6400.0))
 
 
+def _p_wrong_in_gate():
+    import numpy as np
+    from scipy.stats import norm
+
+    from eotrack.experiments import capstone as C
+
+    g = C.epipolar_gate_px()
+    se = np.sqrt(2.0) * 0.3
+    return float(norm.cdf((g - 0.5) / se) - norm.cdf((-g - 0.5) / se))
+
+
+def _gate_5():
+    from eotrack.experiments import capstone as C
+
+    return C.velocity_gate(C.with_changes(pixel_scale_arcsec=5.0))
+
+
 CRITIQUE_OPTIONS = (
     "A: the Earth's shadow lasts longer when the sky is brighter",
     "B: false tracklets enter each object's RA/Dec series unfiltered, as gross errors far "
@@ -62,3 +79,21 @@ register("capstone.4", Choice(
     options=("A", "B", "C", "D"), answer="B",
     hint="Compare which tracklets each stage receives: the association stage gates on the "
          "epipolar constraint; what gates the series the predictor fits?"))
+
+register("capstone.5", NumericAnswer(
+    "Derivation. The epipolar gate is g = σ_e √χ²₁(0.99) with σ_e = √2 × 0.3 px (both points' "
+    "per-axis centroid errors). A wrong partner's noise-free epipolar distance is d₀ = 0.5 px. "
+    "With the gate's own noise model (ε ~ N(0, σ_e²)), what is the probability that it falls "
+    "inside the gate, P(|d₀ + ε| < g)?",
+    expected=_p_wrong_in_gate, rtol=1e-2,
+    hint="Two tails: Φ((g − d₀)/σ_e) − Φ((−g − d₀)/σ_e); the noise of an epipolar distance "
+         "comes from both stations' points."))
+
+register("capstone.6", NumericAnswer(
+    "Computation. The velocity gate is 1.5 × the fastest expected rate of the night's objects "
+    "(table 'expected rates', ″/s) divided by the pixel scale, and at least 2 px over a burst. "
+    "What is it (px/s) if the cameras have 5″ pixels instead of 15″ (same objects, same "
+    "frames)?",
+    expected=_gate_5, rtol=2e-2,
+    hint="The rates in ″/s do not change with the camera; divide by the new pixel scale and "
+         "keep the margin."))

@@ -34,9 +34,17 @@ __all__ = ["frame_example", "plot_budget", "plot_frame", "plot_night", "plot_pip
 _FRACTIONS = [
     ("extraction · target completeness (sunlit frames)", "extraction\ncompleteness"),
     ("separation · target kept as candidate", "kept as\ncandidate"),
-    ("initiation · recall (bursts with ≥ 3 sunlit frames)", "initiation\nrecall"),
-    ("association · correct pairs", "association\ncorrect"),
+    ("initiation · recall (object-bursts with ≥ 3 sunlit frames)", "initiation\nrecall"),
+    ("association · correct pairs, cluster field", "association\ncorrect (cluster)"),
 ]
+#: The predictors drawn: notebook 01's on the catalogue-correlated tracklets, and the orbit.
+_PRED = [(m, f"{m} (catalogue)") for m in PREDICTORS] + [
+    ("orbit", "orbit (catalogue, both stations)")]
+ORBIT_LABEL = "orbit fit (Gauss IOD + Cauchy LSQ)"
+
+
+def _pred_name(m: str) -> str:
+    return ORBIT_LABEL if m == "orbit" else method_style(m).name
 
 
 def _ax(ax, figsize=(6.4, 3.9)):
@@ -236,10 +244,11 @@ def plot_budget(result: NightResult, *, axes=None):
             **series_styles(1)[0].bar(hatch=""))
     label_axes(a1, x="triangulated − SGP4 range", xunit="km", y="associated pairs",
                title="Triangulation: range error")
-    pr = [val.get(f"prediction · {m}: RMS error through the eclipse", np.nan) for m in PREDICTORS]
+    pr = [val.get(f"prediction · {key}: RMS error through the eclipse", np.nan)
+          for _, key in _PRED]
     a0.figure.suptitle("Error budget of the night\nprediction RMS through the eclipse: "
-                       + ", ".join(f"{m.upper() if m != 'wransac' else 'WRANSAC'} {v:.1f}″"
-                                   for m, v in zip(PREDICTORS, pr, strict=True)))
+                       + ", ".join(f"{'orbit' if m == 'orbit' else method_style(m).name} "
+                                   f"{v:.1f}″" for (m, _), v in zip(_PRED, pr, strict=True)))
     return axes
 
 
@@ -261,27 +270,34 @@ def plot_triangulation(result: NightResult, *, ax: plt.Axes | None = None) -> pl
 
 
 def plot_prediction(prediction: pd.DataFrame, *, ax: plt.Axes | None = None) -> plt.Axes:
-    """RMS prediction error through the eclipse per station/object and predictor (linear axis
-    from zero, so bar lengths compare)."""
-    ax = _ax(ax, (7.0, 3.9))
+    """RMS prediction error through the eclipse per station/object: notebook 01's predictors on
+    the catalogue-correlated tracklets beside the orbit fit (linear axis from zero, so bar
+    lengths compare)."""
+    ax = _ax(ax, (7.4, 4.2))
     title = "Prediction through the eclipse: RMS error per station and object"
-    if len(prediction) == 0:
+    sel = prediction
+    if len(prediction) and "series" in prediction.columns:
+        keep = ((prediction["series"] == "catalogue") & prediction["method"].isin(PREDICTORS)) \
+            | (prediction["method"] == "orbit")
+        sel = prediction[keep]
+    if len(sel) == 0:
         ax.text(0.5, 0.5, "no prediction (stage failed)", ha="center", transform=ax.transAxes)
         ax.set_axis_off()
         ax.set_title(title)
         return ax
-    tab = prediction.pivot_table(index=["station", "object"], columns="method",
-                                 values="rms_arcsec")[list(PREDICTORS)]
+    tab = sel.pivot_table(index=["station", "object"], columns="method", values="rms_arcsec")
+    methods = [m for m, _ in _PRED if m in tab.columns]
     x = np.arange(len(tab))
-    wd = 0.8 / len(PREDICTORS)
-    for i, m in enumerate(PREDICTORS):
-        ax.bar(x + (i - (len(PREDICTORS) - 1) / 2) * wd, tab[m], wd,
-               label=method_style(m).name, **method_style(m).bar())
-    ax.set_xticks(x, [f"{s.split()[0]}\n{o}" for s, o in tab.index])
+    wd = 0.8 / len(methods)
+    for i, m in enumerate(methods):
+        st = method_style("cauchy" if m == "orbit" else m)
+        ax.bar(x + (i - (len(methods) - 1) / 2) * wd, tab[m].fillna(0.0), wd,
+               label=_pred_name(m), **st.bar())
+    ax.set_xticks(x, [f"{s.split()[0]}\n{o}" for s, o in tab.index], fontsize=8)
     ax.set_ylim(0, None)
     ax.grid(axis="x", visible=False)
-    label_axes(ax, x="station and NORAD id", y="RMS error in umbra", yunit="″", title=title)
-    legend_outside(ax)
+    label_axes(ax, x="station and object", y="RMS error in umbra", yunit="″", title=title)
+    legend_outside(ax, where="below", ncol=2)
     return ax
 
 
@@ -302,9 +318,11 @@ def _draw_sweep(sweep: pd.DataFrame, level: float, axes) -> tuple[list, Any]:
     a1.plot(x, sweep.loc["triangulation · RMS position error"], label="triangulation",
             **series_styles(7)[6].line())
     label_axes(a1, y="RMS position error", yunit="km", title="Triangulation")
-    for m in PREDICTORS:
-        a2.plot(x, sweep.loc[f"prediction · {m}: RMS error through the eclipse"],
-                label=method_style(m).name, **method_style(m).line())
+    for m, key in _PRED:
+        row = f"prediction · {key}: RMS error through the eclipse"
+        if row in sweep.index:
+            a2.plot(x, sweep.loc[row], label=_pred_name(m),
+                    **method_style("cauchy" if m == "orbit" else m).line())
     label_axes(a2, y="RMS error in umbra", yunit="″", title="Prediction through the eclipse")
     marks = []
     for a in axes:

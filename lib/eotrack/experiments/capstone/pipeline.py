@@ -751,9 +751,10 @@ def eclipse_status(plan: NightPlan, times: dict[tuple[int, int], np.ndarray] | N
 
     The one eclipse criterion of the chain: at least ``min_points`` observations in the
     ``fit_window_s`` before the umbra entry AND at least one after it (the object is seen
-    again, so the prediction can be checked). ``times=None``: the PLANNED visits (station
-    dark, field above the elevation limit — checked before any frame is rendered);
-    otherwise the tracklet times per (station, object) that the run produced.
+    again, so the prediction can be checked). ``times=None``: the PLANNED visits at which the
+    object can be seen (station dark, field above the elevation limit, object not in the
+    umbra — checked before any frame is rendered); otherwise the tracklet times per
+    (station, object) that the run produced.
 
     Returns
     -------
@@ -775,8 +776,9 @@ def eclipse_status(plan: NightPlan, times: dict[tuple[int, int], np.ndarray] | N
                 continue
             t_in = plan.grid_s[np.argmax(umb)]
             t_out = plan.grid_s[len(umb) - 1 - np.argmax(umb[::-1])]
-            if times is None:
-                ok = plan.dark[s] & (plan.elevation_deg[s, fld] > cfg.min_elevation_deg)
+            if times is None:  # planned visits at which the object can be seen (sunlit)
+                ok = plan.dark[s] & (plan.elevation_deg[s, fld] > cfg.min_elevation_deg) & \
+                    (plan.shadow[o] != 2)
                 t = plan.visit_s[ok]
             else:
                 t = np.asarray(times.get((s, o), []), float)
