@@ -106,6 +106,9 @@ def _check_wcs(wcs: Any, name: str) -> WCS:
     if wcs.naxis != 2 or not wcs.has_celestial:
         raise ValueError(f"{name} must be a 2-axis celestial WCS (RA---TAN/DEC--TAN or similar), "
                          f"got naxis={wcs.naxis}, ctype={list(wcs.wcs.ctype)}")
+    if wcs.wcs.lng != 0 or wcs.wcs.lat != 1:
+        raise ValueError(f"{name} must have the longitude (RA) axis first, got ctype "
+                         f"{list(wcs.wcs.ctype)}")
     return wcs
 
 
@@ -119,7 +122,7 @@ def _check_shape(shape: Any, name: str) -> tuple[int, int]:
 def pixel_scale_arcsec(wcs: WCS) -> float:
     """Mean plate scale of a celestial WCS (″/px): the square root of the CD determinant."""
     w = _check_wcs(wcs, "wcs")
-    return float(np.sqrt(abs(np.linalg.det(w.celestial.pixel_scale_matrix))) * ARCSEC_PER_DEG)
+    return float(np.sqrt(abs(np.linalg.det(w.pixel_scale_matrix))) * ARCSEC_PER_DEG)
 
 
 def wcs_from_camera(K: Any, R: Any, image_shape: tuple[int, int]) -> WCS:
@@ -192,7 +195,7 @@ def camera_from_wcs(wcs: WCS) -> tuple[np.ndarray, np.ndarray]:
     """
     from scipy.linalg import rq
 
-    w = _check_wcs(wcs, "wcs").celestial
+    w = _check_wcs(wcs, "wcs")
     if not all(c.endswith("-TAN") or c.endswith("-TAN-SIP") for c in w.wcs.ctype):
         raise ValueError(f"wcs must use the TAN projection, got ctype {list(w.wcs.ctype)}")
     cd = w.pixel_scale_matrix
@@ -231,7 +234,7 @@ def catalog_in_field(wcs: WCS, image_shape: tuple[int, int] | None = None, *,
     catalog
         The catalogue (default :func:`eotrack.astro.load_catalog`).
     """
-    w = _check_wcs(wcs, "wcs").celestial
+    w = _check_wcs(wcs, "wcs")
     if image_shape is None:
         if w.pixel_shape is None:
             raise ValueError("image_shape is needed: the wcs has no pixel_shape")
@@ -346,49 +349,61 @@ class PlateSolution:
         return np.column_stack([x, y])
 
 
-def _fit_tan_astropy(xy: np.ndarray, ra: np.ndarray, dec: np.ndarray,
-                     tangent_radec: tuple[float, float]) -> WCS:
-    """astropy's least-squares TAN fit (CRPIX and CD free, CRVAL at ``tangent_radec``)."""
-    from astropy.coordinates import SkyCoord
-    from astropy.wcs.utils import fit_wcs_from_points
-
-    world = SkyCoord(ra, dec, unit="deg", frame="icrs")
-    proj = SkyCoord(tangent_radec[0], tangent_radec[1], unit="deg", frame="icrs")
-    return fit_wcs_from_points((xy[:, 0], xy[:, 1]), world, proj_point=proj,
-                               projection="TAN", sip_degree=None)
-
-
-def _fit_tan_linear(xy: np.ndarray, ra: np.ndarray, dec: np.ndarray,
-                    tangent_radec: tuple[float, float]) -> WCS:
-    """The same TAN model in closed form: linear least squares in the tangent plane.
-
-    With CRVAL fixed, the gnomonic coordinates ``(ξ, η)`` of the stars are known and the model
-    ``(ξ, η) = M (p − p₀)`` is linear in ``M`` (the CD matrix) and ``M p₀``; its least-squares
-    solution minimises the tangent-plane residuals, which equal astropy's sky residuals
-    (``Δα cos δ``, ``Δδ``) to a relative ``O(ξ²)`` (≈ 10⁻⁴ across a 1° field).
-    """
-    e, n, z = _tangent_basis(*tangent_radec)
-    u = _unit(ra, dec)
+def _gnomonic(radec: np.ndarray, tangent: tuple[float, float]) -> np.ndarray:
+    """Standard coordinates ``(ξ, η)`` (rad) of RA/Dec ``(n, 2)`` about ``tangent``."""
+    e, n, z = _tangent_basis(*tangent)
+    u = _unit(radec[:, 0], radec[:, 1]).reshape(-1, 3)
     w = u @ z
-    xi_eta = np.column_stack([u @ e / w, u @ n / w])
-    A = np.column_stack([xy, np.ones(len(xy))])
-    sol, _, rank, sv = np.linalg.lstsq(A, xi_eta, rcond=None)
-    if rank < 3 or sv[-1] < 1e-9 * sv[0]:
-        raise PlateSolveError("poor_fit", f"poor fit: the {len(xy)} matched stars are (nearly) "
-                              "collinear, the plate solution is undetermined")
-    M = sol[:2].T                      # rad per px
-    p0 = -np.linalg.solve(M, sol[2])   # pixel of the tangent point (0-based)
+    return np.column_stack([u @ e / w, u @ n / w])
+
+
+def _affine_wcs(X: np.ndarray, tangent: tuple[float, float]) -> WCS:
+    """The TAN WCS of ``(ξ, η) = [x, y, 1] @ X`` (``X`` ``(3, 2)``) about ``tangent``."""
+    M = X[:2].T
     wcs = WCS(naxis=2)
     wcs.wcs.ctype = ["RA---TAN", "DEC--TAN"]
-    wcs.wcs.crval = [float(tangent_radec[0]), float(tangent_radec[1])]
-    wcs.wcs.crpix = p0 + 1.0
+    wcs.wcs.crval = [float(tangent[0]), float(tangent[1])]
+    wcs.wcs.crpix = -np.linalg.solve(M, X[2]) + 1.0
     wcs.wcs.cd = np.degrees(M)
     wcs.wcs.radesys = "ICRS"
     wcs.wcs.set()
     return wcs
 
 
-_FITTERS = {"linear": _fit_tan_linear, "astropy": _fit_tan_astropy}
+def _fit_linear(xy: np.ndarray, q: np.ndarray, radec: np.ndarray,
+                tangent: tuple[float, float]) -> np.ndarray:
+    """The TAN model in closed form: linear least squares in the tangent plane.
+
+    With CRVAL fixed at ``tangent``, the stars' standard coordinates ``q = (ξ, η)`` are known
+    and the model ``q = M p + t`` (``M`` the CD matrix in radians, ``t = −M·(CRPIX − 1)``) is
+    linear; its least-squares solution minimises the tangent-plane residuals, which equal
+    astropy's sky residuals (``Δα cos δ``, ``Δδ``) to a relative ``O(ξ²)`` (≈ 10⁻⁴ across a 1°
+    field). Returns ``X`` ``(3, 2)`` with ``q = [x, y, 1] @ X``.
+    """
+    A = np.column_stack([xy, np.ones(len(xy))])
+    X, _, rank, sv = np.linalg.lstsq(A, q, rcond=None)
+    if rank < 3 or sv[-1] < 1e-9 * sv[0]:
+        raise PlateSolveError("poor_fit", f"poor fit: the {len(xy)} matched stars are (nearly) "
+                              "collinear, the plate solution is undetermined")
+    return X
+
+
+def _fit_astropy(xy: np.ndarray, q: np.ndarray, radec: np.ndarray,
+                 tangent: tuple[float, float]) -> np.ndarray:
+    """astropy's ``fit_wcs_from_points`` (TAN, CRVAL at ``tangent``), as the same ``X``."""
+    from astropy.coordinates import SkyCoord
+    from astropy.wcs.utils import fit_wcs_from_points
+
+    world = SkyCoord(radec[:, 0], radec[:, 1], unit="deg", frame="icrs")
+    proj = SkyCoord(tangent[0], tangent[1], unit="deg", frame="icrs")
+    w = fit_wcs_from_points((xy[:, 0], xy[:, 1]), world, proj_point=proj, projection="TAN",
+                            sip_degree=None)
+    M = np.radians(w.pixel_scale_matrix)
+    return np.vstack([M.T, -M @ (np.asarray(w.wcs.crpix) - 1.0)])
+
+
+_FITTERS = {"linear": _fit_linear, "astropy": _fit_astropy}
+_RAD_TO_ARCSEC = 180.0 / np.pi * ARCSEC_PER_DEG
 
 
 def _one_to_one(det: np.ndarray, pred: np.ndarray, radius: float) -> tuple[np.ndarray,
@@ -515,7 +530,7 @@ def solve_plate(xy_px: Any, catalog_radec_deg: Any, wcs_guess: WCS, *,
     cat = as_points(catalog_radec_deg, "catalog_radec_deg")
     if len(cat) and (np.any(np.abs(cat[:, 1]) > 90.0)):
         raise ValueError("catalog_radec_deg: Dec (second column) must lie in [-90, 90] degrees")
-    w0 = _check_wcs(wcs_guess, "wcs_guess").celestial
+    w0 = _check_wcs(wcs_guess, "wcs_guess")
     r_match = check_positive(match_radius_px, "match_radius_px")
     max_off_as = check_positive(max_offset_arcsec, "max_offset_arcsec")
     max_roll = check_positive(max_roll_deg, "max_roll_deg", allow_zero=True)
@@ -590,18 +605,31 @@ def solve_plate(xy_px: Any, catalog_radec_deg: Any, wcs_guess: WCS, *,
     c_px = np.array([(nx - 1) / 2.0, (ny - 1) / 2.0])
     c_guess = _rotate((c_px - off)[None], centre, -roll)[0]
     tangent = tuple(float(v) for v in w0.wcs_pix2world([c_guess], 0)[0])
+    radec = cat[idx]
+    q_all = _gnomonic(radec, tangent)
 
-    def clip(i_d: np.ndarray, j_c: np.ndarray) -> tuple[WCS, np.ndarray]:
-        """LMedS start, re-admission from the inliers' fit, then backward elimination (drop
-        the worst pair while it exceeds k_clip robust σ)."""
-        keep = _lmeds_inliers(xy[i_d], cat[idx[j_c]], tangent, k_clip, floor_as)
+    def residuals(X: np.ndarray, i_d: np.ndarray, j_c: np.ndarray) -> np.ndarray:
+        p = np.column_stack([xy[i_d], np.ones(len(i_d))])
+        return np.linalg.norm(p @ X - q_all[j_c], axis=1) * _RAD_TO_ARCSEC
+
+    def fit_pairs(i_d: np.ndarray, j_c: np.ndarray) -> np.ndarray:
+        return fit(xy[i_d], q_all[j_c], radec[j_c], tangent)
+
+    def clip(i_d: np.ndarray, j_c: np.ndarray, X0: np.ndarray | None = None
+             ) -> tuple[np.ndarray, np.ndarray]:
+        """Start (LMedS, or the previous round's fit ``X0``), re-admission from the inliers'
+        fit, then backward elimination (drop the worst pair while it exceeds k_clip robust σ).
+        """
+        if X0 is None:
+            keep = _lmeds_inliers(xy[i_d], q_all[j_c], k_clip, floor_as)
+        else:
+            res0 = residuals(X0, i_d, j_c)
+            keep = res0 <= k_clip * _robust_sigma(res0, floor_as)
         for _ in range(10):   # re-admit / re-reject from the inliers' fit until stable
             if keep.sum() < 3:
                 break
-            w = fit(xy[i_d[keep]], cat[idx[j_c[keep]], 0], cat[idx[j_c[keep]], 1], tangent)
-            res = _residuals(w, xy[i_d], cat[idx[j_c]])
-            sig = _robust_sigma(res[keep], floor_as)
-            new = res <= k_clip * sig
+            res = residuals(fit_pairs(i_d[keep], j_c[keep]), i_d, j_c)
+            new = res <= k_clip * _robust_sigma(res[keep], floor_as)
             if np.array_equal(new, keep):
                 break
             keep = new
@@ -610,28 +638,32 @@ def solve_plate(xy_px: Any, catalog_radec_deg: Any, wcs_guess: WCS, *,
                 raise PlateSolveError("too_few_matches",
                                       f"too few matches: {int(keep.sum())} star(s) left after "
                                       f"{k_clip:g}σ clipping, need {n_min}")
-            w = fit(xy[i_d[keep]], cat[idx[j_c[keep]], 0], cat[idx[j_c[keep]], 1], tangent)
-            res = _residuals(w, xy[i_d], cat[idx[j_c]])
+            X = fit_pairs(i_d[keep], j_c[keep])
+            res = residuals(X, i_d, j_c)
             sig = _robust_sigma(res[keep], floor_as)
             worst = int(np.argmax(np.where(keep, res, -1.0)))
             if res[worst] <= k_clip * sig:
-                return w, keep
+                return X, keep
             keep[worst] = False
 
-    wcs, keep = clip(i_det, j_cat)
+    X, keep = clip(i_det, j_cat)
     for _ in range(n_iter - 1):
-        # re-match every detection with the fitted WCS; stop when the matched set is stable
-        x, y = wcs.wcs_world2pix(cat[idx, 0], cat[idx, 1], 0)
-        i_new, j_new = _one_to_one(xy, np.column_stack([x, y]), r_match)
+        # re-match every detection with the fitted model; stop when the matched set is stable
+        M, t = X[:2].T, X[2]
+        pred = np.linalg.solve(M, (q_all - t).T).T
+        i_new, j_new = _one_to_one(xy, pred, r_match)
         if set(zip(i_new.tolist(), j_new.tolist())) == \
                 set(zip(i_det[keep].tolist(), j_cat[keep].tolist())):
             break
         i_det, j_cat = i_new, j_new
-        wcs, keep = clip(i_det, j_cat)
+        X, keep = clip(i_det, j_cat, X)
     i_det, j_cat = i_det[keep], j_cat[keep]
+    wcs = _affine_wcs(X, tangent)
+    # final fit about the solved frame centre (CRVAL = centre, CRPIX ≈ image centre)
     tangent = tuple(float(v) for v in wcs.wcs_pix2world([c_px], 0)[0])
-    wcs = fit(xy[i_det], cat[idx[j_cat], 0], cat[idx[j_cat], 1], tangent)
-    res = _residuals(wcs, xy[i_det], cat[idx[j_cat]])
+    q_all = _gnomonic(radec, tangent)
+    wcs = _affine_wcs(fit_pairs(i_det, j_cat), tangent)
+    res = _residuals(wcs, xy[i_det], radec[j_cat])
     rms = float(np.sqrt(np.mean(res ** 2)))
     if not np.isfinite(rms) or rms > r_match * scale:
         raise PlateSolveError("poor_fit", f"poor fit: residual RMS {rms:.2f}″ over "
@@ -642,8 +674,8 @@ def solve_plate(xy_px: Any, catalog_radec_deg: Any, wcs_guess: WCS, *,
                          float(np.degrees(roll)), n_cand)
 
 
-def _lmeds_inliers(xy: np.ndarray, radec: np.ndarray, tangent: tuple[float, float],
-                   k_clip: float, floor_arcsec: float, max_pairs: int = 14) -> np.ndarray:
+def _lmeds_inliers(xy: np.ndarray, q: np.ndarray, k_clip: float, floor_arcsec: float,
+                   max_pairs: int = 14) -> np.ndarray:
     """Inliers of the least-median-of-squares affine tangent-plane fit over triplets.
 
     Every triplet of the first ``max_pairs`` pairs (brightest detections first) determines
@@ -656,10 +688,6 @@ def _lmeds_inliers(xy: np.ndarray, radec: np.ndarray, tangent: tuple[float, floa
     n = len(xy)
     if n < 4:
         return np.ones(n, bool)
-    e, nn, z = _tangent_basis(*tangent)
-    u = _unit(radec[:, 0], radec[:, 1])
-    w = u @ z
-    q = np.column_stack([u @ e / w, u @ nn / w])              # rad
     P = np.column_stack([xy, np.ones(n)])
     tri = np.array(list(combinations(range(min(n, max_pairs)), 3)))
     A = P[tri]                                                 # (t, 3, 3)
@@ -668,7 +696,7 @@ def _lmeds_inliers(xy: np.ndarray, radec: np.ndarray, tangent: tuple[float, floa
     if not ok.any():
         return np.ones(n, bool)
     X = np.linalg.solve(A[ok], q[tri[ok]])                     # (t, 3, 2)
-    r2 = np.sum((P @ X - q[None]) ** 2, axis=2) * (ARCSEC_PER_DEG * 180 / np.pi) ** 2
+    r2 = np.sum((P @ X - q[None]) ** 2, axis=2) * _RAD_TO_ARCSEC ** 2
     med = np.median(r2, axis=1)
     best = int(np.argmin(med))
     # robust per-axis σ of a Rayleigh residual, with the small-sample factor of LMedS
