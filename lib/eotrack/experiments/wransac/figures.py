@@ -108,37 +108,44 @@ def plot_flowchart(*, ax: plt.Axes | None = None) -> plt.Axes:
     """Fig. 3: the WRANSAC flowchart, drawn from the steps of :func:`eotrack.robust.ransac`."""
     ax = get_ax(ax, figsize=(6.5, 7.2))
     steps = [
-        ("start", "observations (t_i, y_i), threshold t = 3σ, budget U (eq. 2)"),
-        ("box", "draw a minimal sample of m = 4 points"),
-        ("box", "solve y = a sin ωt + b cos ωt + c + d t exactly"),
-        ("box", "cost J = Σ L_s(e_i) over ALL data (eq. 3, eq. 6 corrected)"),
-        ("diamond", "J < best J so far?"),
-        ("box", "keep: best inlier set {|e_i| ≤ t}, its residuals"),
-        ("diamond", "U samples drawn?"),
-        ("box", "weights w_i = 1 − L_s(e_i) on the best inlier set"),
-        ("box", "weighted refit: θ = argmin Σ w_i (y_i − a_iᵀθ)²"),
-        ("start", "predict y(t) for 15 / 30 / 72 min"),
+        ("start", r"observations $(t_i, y_i)$, threshold $t = 3\sigma$, budget $U$ (eq. 2)"),
+        ("box", r"draw a minimal sample of $m = 4$ points"),
+        ("box", r"solve $y = a\,\sin\omega t + b\,\cos\omega t + c + d\,t$ exactly"),
+        ("box", r"cost $J = \Sigma_i\, L_s(e_i)$ over ALL data (eq. 3, eq. 6 corrected)"),
+        ("diamond", r"$J <$ best $J$ so far?"),
+        ("box", r"keep: best inlier set $\{|e_i| \leq t\}$, its residuals"),
+        ("diamond", r"$U$ samples drawn?"),
+        ("box", r"weights $w_i = 1 - L_s(e_i)$ on the best inlier set"),
+        ("box", r"weighted refit: $\theta = \arg\min\, \Sigma_i\, w_i (y_i - a_i^\top\theta)^2$"),
+        ("start", r"predict $y(t)$ for 15 / 30 / 72 min"),
     ]
     ys = np.linspace(0.95, 0.05, len(steps))
+    half, pad, x0, x1 = 0.025, 0.012, 0.14, 0.86  # box half-height, padding, left/right edge
+    top, bottom, left, right = half + pad, -(half + pad), x0 - pad, x1 + pad
     for (kind, text), y in zip(steps, ys, strict=True):
-        style = {"start": "round,pad=0.02", "box": "square,pad=0.02",
-                 "diamond": "round4,pad=0.02"}[kind]
+        style = {"start": f"round,pad={pad}", "box": f"square,pad={pad}",
+                 "diamond": f"round4,pad={pad}"}[kind]
         color = {"start": "#dbe9f6", "box": "#f2f2f2", "diamond": "#fde9c9"}[kind]
-        ax.add_patch(FancyBboxPatch((0.12, y - 0.03), 0.76, 0.06, boxstyle=style, fc=color,
+        ax.add_patch(FancyBboxPatch((x0, y - half), x1 - x0, 2 * half, boxstyle=style, fc=color,
                                     ec="k", lw=0.8, transform=ax.transAxes))
-        ax.text(0.5, y, text, ha="center", va="center", fontsize=8.5, transform=ax.transAxes)
+        ax.text(0.5, y, text, ha="center", va="center", fontsize=9, transform=ax.transAxes)
+    arrow = {"arrowstyle": "-|>", "mutation_scale": 10, "transform": ax.transAxes, "color": "k",
+             "shrinkA": 0, "shrinkB": 0}
     for y0, y1 in itertools.pairwise(ys):
-        ax.add_patch(FancyArrowPatch((0.5, y0 - 0.03), (0.5, y1 + 0.03), arrowstyle="-|>",
-                                     mutation_scale=10, transform=ax.transAxes, color="k"))
-    # "no" branches: J not better → skip the update; not all U drawn → back to sampling
-    ax.add_patch(FancyArrowPatch((0.88, ys[4]), (0.95, ys[6]), connectionstyle="arc3,rad=-0.4",
-                                 arrowstyle="-|>", mutation_scale=10, transform=ax.transAxes))
-    ax.text(0.965, (ys[4] + ys[6]) / 2, "no", fontsize=8, transform=ax.transAxes)
-    ax.add_patch(FancyArrowPatch((0.12, ys[6]), (0.12, ys[1]), connectionstyle="arc3,rad=-0.5",
-                                 arrowstyle="-|>", mutation_scale=10, transform=ax.transAxes))
-    ax.text(0.0, (ys[1] + ys[6]) / 2, "no:\nnext\nsample", fontsize=8, transform=ax.transAxes)
-    ax.text(0.52, (ys[4] + ys[5]) / 2, "yes", fontsize=8, transform=ax.transAxes)
-    ax.text(0.52, (ys[6] + ys[7]) / 2, "yes", fontsize=8, transform=ax.transAxes)
+        ax.add_patch(FancyArrowPatch((0.5, y0 + bottom), (0.5, y1 + top), **arrow))
+    # "no" branches, edge to edge: J not better → skip the update (to the U test); not all U
+    # drawn → back to sampling
+    ax.add_patch(FancyArrowPatch((right, ys[4]), (right, ys[6]),
+                                 connectionstyle="bar,fraction=-0.3", **arrow))
+    ax.text(right + 0.01, ys[4] + 0.012, "no", fontsize=9, ha="left", va="bottom",
+            transform=ax.transAxes)
+    ax.add_patch(FancyArrowPatch((left, ys[6]), (left, ys[1]),
+                                 connectionstyle="bar,fraction=-0.18", **arrow))
+    ax.text(left - 0.01, ys[6] - 0.012, "no: next sample", fontsize=9, ha="right", va="top",
+            transform=ax.transAxes)
+    for k in (4, 6):
+        ax.text(0.52, (ys[k] + ys[k + 1]) / 2, "yes", fontsize=9, va="center",
+                transform=ax.transAxes)
     ax.set_axis_off()
     ax.set_title("Fig. 3 — WRANSAC flowchart (steps of eotrack.robust.ransac)")
     return ax
