@@ -587,6 +587,12 @@ def solve_plate(xy_px: Any, catalog_radec_deg: Any, wcs_guess: WCS, *,
     # Poisson bound on the highest chance peak over all pairs and rolls
     n_tries = max(n_pairs, 1) * len(rolls)
     need = max(n_min, _poisson_quantile(lam, 1e-3 / n_tries) + 1)
+    if votes < n_min and votes >= _poisson_quantile(lam, 1e-3 / n_tries) + 1:
+        raise PlateSolveError("too_few_matches",
+                              f"too few matches: the pointing offset ({off[0]:.1f}, "
+                              f"{off[1]:.1f}) px is shared by only {votes} star pair(s), need "
+                              f"{n_min} ({len(idx)} catalogue stars near the frame, "
+                              f"{len(xy)} detections) — a sparse field or a shallow catalogue")
     if votes < need:
         raise PlateSolveError("no_consistent_match",
                               f"no consistent match: the best pointing offset is shared by "
