@@ -18,16 +18,14 @@
 #
 # **What the paper does.** After star removal a frame still holds *candidates*: moving objects
 # and missed stars. Track *initiation* decides which candidates of different frames are one
-# object. A space object moves on a straight line at constant speed over a few seconds, so Xu &
-# Wang vote with *pairs* of candidates (current frame and the two before it, inside a velocity
-# gate) for the line, speed and direction (ρ, θ, v, s); a cell with detections of m − 1 of the
-# last m frames is a track (3/4 rule). Their 4-frame experiment finds all five objects and
-# nothing else.
+# object. Over a few seconds a space object moves on a straight line at constant speed, so Xu &
+# Wang let *pairs* of candidates (inside a velocity gate) vote for line, speed and direction
+# (ρ, θ, v, s); a cell with detections of m − 1 of the last m frames is a track (3/4 rule).
+# Their 4-frame experiment finds all five objects and nothing else.
 #
-# **What this notebook adds.** The lost Tables 1–2 rebuilt as stated assumptions, the paper's
-# procedure run literally, and an improved initiator — the same 3-of-4 rule with a χ² test at
-# the noise, conflicts resolved best fit first — judged on random scenes by recall, GOSPA, SIAP
-# and the analytic chance rate of the rule.
+# **What this notebook adds.** The lost Tables 1–2 rebuilt as assumptions, the paper's
+# procedure run literally, and an improved initiator (a χ² test at the noise, best fit first)
+# judged on random scenes by recall, GOSPA, SIAP and the rule's analytic chance rate.
 #
 # ## Learning objectives
 #
@@ -41,9 +39,7 @@
 # 4. judge an initiator by recall, false tracks, GOSPA and SIAP on scenes it was not tuned to;
 # 5. say when the angle constraint of the logic rule can act.
 #
-# **Prerequisites.** Least-squares straight-line fits; the χ² distribution; uniform (Poisson)
-# clutter. Notebook 03 treats the hypothesis-testing initiator of the same collection; it is
-# not needed first.
+# **Prerequisites.** Least-squares line fits; the χ² distribution; uniform (Poisson) clutter.
 #
 # **Scorecard** (written by `make repro` to `papers_repro/track_init_hough/`; recomputed in
 # section 6):
@@ -177,13 +173,11 @@ display(Markdown(f"{len(brute)} of {len(A) * len(B)} pairs pass the gate at Δt 
 #
 # $$P(t) \leftarrow P(t) + 1 \quad \text{for } t \in S_{kj} \cup S_{ki}, \tag{8}$$
 #
-# a *set*: a frame adds at most one vote per cell. A cell is confirmed when $P(t) = m - 1$;
-# the votes of frame $k - m + 1$ are removed after extraction. Read literally, "+1 per
-# current frame" would give the object seen in all four frames 3 votes only at frame 4; the
-# paper confirms it at frame 3. That is what one gets when $P(t)$ counts the **frames whose
-# detections are in $Q(t)$** — our reading (Errata). Check on the noise-free planted scene of
-# the unit tests (one object in all frames, two missing frame 3 / frame 2, two collinear ones
-# at different speeds missing frame 1): confirmations per frame 0, 0, 1, 4, as the paper says.
+# a *set*: a frame adds at most one vote per cell; a cell is confirmed when $P(t) = m - 1$.
+# Read literally, "+1 per current frame" gives the object seen in all four frames 3 votes only
+# at frame 4, but the paper confirms it at frame 3 — what one gets when $P(t)$ counts the
+# **frames whose detections are in $Q(t)$** (our reading, Errata). Check on a noise-free
+# 5-object scene like the paper's: confirmations per frame 0, 0, 1, 4, as the paper says.
 
 # %%
 planted = [((60.0, 420.0), (35.0, -22.0), (0, 1, 2, 3)), ((80.0, 80.0), (40.0, 30.0), (0, 1, 3)),
@@ -197,19 +191,16 @@ assert [e["confirmed"] for e in run.log] == [0, 0, 1, 4]
 pd.DataFrame(run.log)[["frame", "candidates", "pairs", "created", "tentative", "confirmed"]]
 
 # %% [markdown]
-# **The other equations of §3**, lost in our source and rebuilt from the text (our notation):
+# **The other equations of §3**, lost in our source, rebuilt from the text:
 #
-# * parameter space: $\rho \in [-\rho_{max}, \rho_{max}]$, $\theta \in [0, \pi)$,
-#   $v \in [v_{min}, v_{max}]$, $s \in \{+, -\}$; cells
-#   $\rho_n = \lfloor \rho/\delta\rho \rfloor$, $\theta_n = \lfloor \theta/\delta\theta \rfloor$,
-#   $v_n = \lfloor v/\delta v \rfloor$;
-# * the pair's line: with $\Delta = b - a$, $(\cos\theta, \sin\theta) = \pm(-\Delta_y, \Delta_x)/|\Delta|$
-#   (sign chosen so that $\theta \in [0, \pi)$), then ρ from eq. (1) and $s = \operatorname{sign}(\Delta\cdot(\sin\theta, -\cos\theta))$;
-# * point sets: $Q(t) \leftarrow Q(t) \cup \{(a, b)\}$ for every gated pair of cell $t$;
-# * expiry after extraction: the votes and pairs of frame $k - m + 1$ leave $P$ and $Q$;
-# * neighbour test: $(\rho, \theta) = f(Q(t))$, the least-squares line through $Q(t)$, must be
-#   close to the cell $t'$ ($|\rho - \rho'| \le 1.5\,\delta\rho$, $|\theta - \theta'| \le
-#   1.5\,\delta\theta$, our reading), and the track is confirmed when $P(t) + P(t') = m - 1$.
+# * cells $\rho_n = \lfloor \rho/\delta\rho \rfloor$, $\theta_n = \lfloor \theta/\delta\theta \rfloor$,
+#   $v_n = \lfloor v/\delta v \rfloor$, $s \in \{+, -\}$;
+# * the pair's line: $\Delta = b - a$, $(\cos\theta, \sin\theta) = \pm(-\Delta_y, \Delta_x)/|\Delta|$
+#   with $\theta \in [0, \pi)$, ρ from eq. (1), $s = \operatorname{sign}(\Delta\cdot(\sin\theta, -\cos\theta))$;
+# * $Q(t) \leftarrow Q(t) \cup \{(a, b)\}$ for every gated pair of cell $t$; after extraction the
+#   votes and pairs of frame $k - m + 1$ expire;
+# * neighbour test (our reading): the least-squares line through $Q(t)$ within $1.5\,\delta\rho$
+#   and $1.5\,\delta\theta$ of the cell $t'$, and $P(t) + P(t') = m - 1$.
 #
 # ### 4.4 Drawing the (ρ, θ) voting; the 6- and 26-neighbourhoods
 #
@@ -233,13 +224,11 @@ fig = TH.plot_rho_theta_votes(scene, cfg, target=1)
 # %% [markdown]
 # ### 4.5 What the paper's rule leaves open, and our verified initiator
 #
-# Three weaknesses of cell counting show on general scenes (section 5): (i) a cell is confirmed
-# by counting frames, not by checking that its detections form *one* constant-velocity motion —
-# two static stars 50 px apart fill one cell for three frames; (ii) the confirmation tolerance
-# is a cell size, not the measurement noise; (iii) conflicts are settled greedily in cell order,
-# so a false track can take an object's detection first. Our **verified** initiator
-# (`ModifiedHoughInitiator(literal=False)`, the library default) keeps the 3-of-4 rule and the
-# velocity gate and replaces cell counting by a test:
+# Cell counting (i) counts frames without checking that the detections form *one*
+# constant-velocity motion (two static stars 50 px apart fill one cell for three frames), (ii)
+# tolerates a cell size, not the noise, and (iii) settles conflicts in cell order. Our
+# **verified** initiator (`ModifiedHoughInitiator(literal=False)`, the library default) keeps
+# the 3-of-4 rule and the velocity gate and replaces cell counting by a test:
 #
 # * the hits $x_i$ at times $t_i$ of a candidate track are fitted by least squares with
 #   $x(t) = \bar x + u\,(t - \bar t)$, and the track passes when
@@ -256,14 +245,13 @@ fig = TH.plot_rho_theta_votes(scene, cfg, target=1)
 #   $(k-3, k-1, k)$; each is searched from a seed pair two frames apart; the passing triplets are
 #   extended to the window's fourth frame when it fits, ranked (more hits, then the fit's
 #   p-value) and accepted best first, each detection in one track;
-# * the library default also searches **four-hit constant-acceleration** tracks over frames
-#   k−3…k (`accel_px_s2 = 3.0`, quadratic fit, χ² with 2 d.o.f.), which join the same ranking.
-#   Every "ours" number of §5–§7 uses this default; the chance formula of §4.6 and its
-#   clutter-only check describe the rule with the search off (`accel_px_s2 = 0`), which in
-#   clutter-only scenes makes the same count to within 1 in 750.
+# * the default also searches **four-hit constant-acceleration** tracks over frames k−3…k
+#   (`accel_px_s2 = 3.0`, quadratic fit, χ² with 2 d.o.f.) in the same ranking. Every "ours"
+#   number of §5–§7 uses this default; §4.6's formula and its check describe the rule with the
+#   search off (`accel_px_s2 = 0`).
 #
-# Its gate defaults (`v_max` = 240 px/s) are the paper's 512 px scale; a wider field needs a
-# wider gate, or faster objects are silently never initiated.
+# The gate defaults (`v_max` = 240 px/s) are the paper's 512 px scale; a wider field needs a
+# wider gate.
 #
 # The disc *is* the test. Check by hand on one triplet, then with the library's batch fit:
 
@@ -304,17 +292,14 @@ pd.DataFrame(run.log)
 # with $D(T)$ the probability that two uniform points of the square are between $v_{min}T$ and
 # $v_{max}T$ apart (closed form, `distance_cdf_square`). Summing $N_{f_1}N_{f_2}N_{f_3}\,P_3$
 # over the triplet shapes of every frame (`triplet_shapes`) gives the expected number of
-# passing triples, an upper bound. `chi2_chance_tracks` applies three corrections: a residual
-# star cannot pair with itself (inclusion–exclusion over shared stars); passing triples of one
-# frame that share a detection are confirmed once (**conflicts**: for each confirmation frame k,
-# $E_f$ is the expected number of passing triples ending at k that use frame f, for *every*
-# frame f of the window, and $N_f$ the depleted count of frame f; a detection lies in
-# $\mu_f = E_f/N_f$ of them, so $\sum_f E_f^2/2N_f$ fewer tracks, capped at half of frame k's
-# triples to stay a second-order correction); and a confirmed
-# chance track uses up its detections (**depletion**, frame by frame, mean-field). An earlier
-# version without the conflict term was ~8 % high at 50 per frame; §5 checks the corrected count
-# on clutter-only scenes. Check $P_3$ against brute force (400 000 triples: ~4,300 pass, so the
-# 5 % tolerance is ~3 s.e.):
+# passing triples, an upper bound. `chi2_chance_tracks` corrects it three ways: a residual star
+# cannot pair with itself (inclusion–exclusion); passing triples of one frame that share a
+# detection are confirmed once (**conflicts**: with $E_f$ the expected passing triples ending
+# at frame k that use frame f and $N_f$ its depleted count, $\sum_f E_f^2/2N_f$ fewer tracks,
+# capped at half of frame k's triples); and a confirmed chance track uses up its detections
+# (**depletion**, frame by frame, mean-field). Without the conflict term the count is too high
+# (§5 checks it on clutter-only scenes). Check $P_3$ against brute force (the tolerance is
+# about 3 standard errors of the pass count, printed):
 
 # %%
 rng = np.random.default_rng(0)
@@ -328,19 +313,20 @@ p_formula = TH.triplet_chance_probability(*t3, width=L, v_min=3, v_max=20, sigma
                                           alpha=0.01)
 assert abs(passed.mean() / p_formula - 1) < 0.05
 display(Markdown(f"$P_3$: formula {p_formula:.3g}, brute force {passed.mean():.3g} "
-                 f"({n_mc} random triples)."))
+                 f"({n_mc} random triples, {int(passed.sum())} pass: 5 % is "
+                 f"{0.05 * math.sqrt(passed.sum()):.1f} standard errors)."))
 
 # %% [markdown]
 # ### 4.7 The logic n/m rule and the angle constraint
 #
-# The sliding-window logic: every candidate opens a *head*, paired with every gated candidate of
-# a later frame of its window; a tentative track takes the nearest candidate within $r$ of its
-# constant-velocity prediction and is confirmed with n detections in m frames. The **angle-constrained** variant [3] also rejects a
-# point whose angle at the middle of the last three points is ≤ 90° ("V" shapes). With
-# $r$ = 10 px and $v_{min}$ = 10 px/s the prediction lies at least 10 px ahead of the last point,
-# so every point of the gate makes an angle > 90° there: the constraint can only act when
-# $r > v_{min}\Delta t$. *Our approximation* (not validated: Beyond measures it 0.6–3 × off) of
-# the logic rule's chance rate in uniform clutter is
+# Every candidate opens a *head*, paired with every gated candidate of a later frame of its
+# window; a tentative track takes the nearest candidate within $r$ of its constant-velocity
+# prediction and is confirmed with n detections in m frames. The **angle-constrained** variant
+# [3] also rejects a point whose angle at the middle of the last three is ≤ 90°. With $r$ =
+# 10 px and $v_{min}$ = 10 px/s the prediction lies ≥ 10 px ahead of the last point, so no
+# point of the gate makes an angle ≤ 90°: the constraint acts only when $r > v_{min}\Delta t$.
+# *Our approximation* (not validated; Beyond compares it with the measurement) of the logic
+# rule's chance rate in uniform clutter is
 #
 # $$ R = N_c \sum_{\Delta=1}^{m-1} N_c\, p_\Delta \;
 #   \Pr\Big[\sum_{j=1}^{m-1-\Delta} B_j \ge n-2\Big],\qquad
@@ -492,11 +478,10 @@ angle.pivot_table(index=["clutter", "gate_px"], columns="method",
 # before the run): 2–8 objects at 5–150 px/s in random directions, each detection missed with
 # probability 0.1, 10–40 static residual stars, uniform clutter of 5–50 per frame, σ = 0.3 px;
 # every initiator gets the gate [3, 240] px/s. First the chance rate of §4.6 against clutter-only
-# scenes (with the acceleration search off, the rule the formula describes); the planted
-# criterion multiplies the formula by what it is worth, the pooled measured/analytic ratio.
-# The check needs many scenes at low density — 2,500 / 450 / 200 at 20 / 35 / 50 per frame, so
-# that every level's ratio has a standard error of ~1.7 % (100 scenes per level gave 7 % at
-# 20 per frame, too little to test a 5 % criterion). `make repro` runs it (≈ 2 min) and writes
+# scenes (acceleration search off, the rule the formula describes); the planted criterion
+# multiplies the formula by the pooled measured/analytic ratio. Chance tracks are rare at low
+# density, so the check runs more scenes there (the standard errors are printed below, with
+# what 100 scenes per level would give). `make repro` runs it and writes
 # `papers_repro/track_init_hough/chance_rate_check.csv`, which this cell reads; with
 # `QUICK = True`, or without that file, it runs the test suite's 10 scenes per level.
 
@@ -509,8 +494,9 @@ else:
 ax = TH.plot_chance_check(chance)
 k_chance = TH.calibrated_chance_factor(chance)
 display(Markdown("measured/analytic: " + ", ".join(
-    f"{c:g}/frame {r:.3f} ± {e:.3f}" for c, r, e in
-    zip(chance["clutter"], chance["ratio"], chance["ratio s.e."]))
+    f"{c:g}/frame {r:.3f} ± {e:.3f} ({n} scenes; 100 scenes: ± {e * math.sqrt(n / 100):.3f})"
+    for c, r, e, n in zip(chance["clutter"], chance["ratio"], chance["ratio s.e."],
+                          chance["scenes"]))
     + f"; pooled **{k_chance:.3f}**."))
 chance
 
@@ -636,33 +622,26 @@ explore = panel(draw, tight=False,
 # %% [markdown]
 # ## 8 · Errata and deviations
 #
-# * **Tables 1 and 2 are lost.** Table 1 is ours, changed twice after seeing results (tracks 4
-#   and 5 were 1.3 px apart in frame 2; track 3 was 3 px from a star), recorded as
-#   after-results history. Track 2's loss by the 6-neighbourhood depends on our chosen velocity
-#   and position, and the redraws vary only stars and noise, so "not reproduced" is partly a
-#   property of our Table 1. Table 2 is reproduced in form only. The residual-star fraction is
-#   our assumption.
+# * **Tables 1 and 2 are lost.** Table 1 is ours, changed twice after seeing results (recorded
+#   as after-results history); the redraws vary only stars and noise, so "not reproduced" is
+#   partly a property of our Table 1 (Beyond: random tables). Table 2 is reproduced in form
+#   only; the residual-star fraction is assumed.
 # * **Eq. (8)** read as "+1 per current frame" contradicts the paper's confirmation frames; we
-#   count distinct frames in Q(t) (§4.3). The lost formulas are rebuilt in §4.3, with uncertain
-#   numbering ("(7) and (8)", "(9)").
-# * **Direction s** is ambiguous in the text: + is along $(\sin\theta, -\cos\theta)$. The
-#   **origin of ρ** is not stated; we use the image corner.
+#   count distinct frames in Q(t) (§4.3). The lost formulas are rebuilt in §4.3 (numbering
+#   uncertain).
+# * **Direction s**: + is along $(\sin\theta, -\cos\theta)$. **Origin of ρ**: not stated;
+#   the image corner.
 # * **Constant-velocity check** (ours): a confirmed cell must give one detection per frame on a
 #   constant-velocity track of the cell (pairs in the cell or a 26-neighbour, residual ≤ δρ/2).
-#   Every "modified Hough 3/4 (paper)" row is the paper's procedure *plus this check*. Without
-#   it, static residual stars make many more false tracks; the statuses do not change.
-# * **6-neighbourhood**: an object seen in three frames is lost when its two pair cells differ
-#   in two of (ρ, θ, v). The 26-neighbourhood and the verified initiator recover the scene
-#   (*variant* column), which cannot make the paper's claim reproduced.
-# * **Planted yardstick**: the chance rate of the planted criterion is our χ² rule's (a disc of
-#   ~1.4–2 px), not that of the paper's 5 px × 5° × 3 px/s cell. The recall half decides.
-# * **Logic details** left open: heads stay open for their window, a 10 px gate, and conflicts
-#   go to the track with more points. At that gate the angle constraint cannot act (§4.7), so
-#   (b) of the method comparison is not testable there. Its *partial* is our gate's doing.
+#   Every "modified Hough 3/4 (paper)" row includes it; Beyond runs the bare procedure.
+# * **6-neighbourhood**: an object seen in three frames is lost when its two pair cells are not
+#   6-neighbours. The 26-neighbourhood and the verified initiator are *variants*; they cannot
+#   make the paper's claim reproduced.
+# * **Planted yardstick**: the chance rate is our χ² rule's, not that of the paper's cell.
+# * **Logic details** left open: heads stay open for their window, a 10 px gate, conflicts to
+#   the track with more points. At that gate the angle constraint cannot act (§4.7).
 # * **Hand-off**: a confirmed track claims its later detections within 5 px of its prediction.
-# * **Review of issue 27, second round**: 18 findings (3 high, 8 medium, 7 low). 15 are fixed
-#   or answered here. Three are left open: the held-out target (Beyond, not met), the bare
-#   procedure without the CV check (not shown), and Table 1 redraws over random tables.
+# * **Reviews**: the closing note below the exercises gives the counts.
 
 # %% [markdown]
 # ## 9 · Beyond the paper
@@ -728,36 +707,89 @@ display(Markdown(
     "competes for each update under global nearest neighbour. Without clutter it loses none."))
 
 # %% [markdown]
-# ### A held-out family (issue 27's "Generalise" target, not met)
+# ### Table 1 redrawn at random
 #
-# Scenes the default was *not* sized on: 8 irregular frames (0.6–1.6 s apart), P_D 0.8, a
-# burst of 150 false alarms in one frame, objects accelerating by up to ±3 px/s² (the
-# default's `accel_px_s2`) and ±5 px/s² (beyond it), seed 777 (the default was sized on
-# seed 11). Target: recall ≥ 0.90 with no more false tracks than logic 3/4. The opt-in
-# `accel_gapped=True` also searches 4 detections in 5 frames (about 1.6× the time per frame).
+# The statuses of §5 rest on *our* Table 1. Here the table itself is redrawn: the same frame
+# patterns, random starts and velocities (speeds uniform in 20–80 px/s, every object inside the
+# field), stars and noise as before. Share of redraws in which each initiator finds exactly the
+# five objects and nothing else:
 
 # %%
-from dataclasses import replace as _replace
+rand_tab = TH.xu_random_tables(cfg, max(4, N["aux"]), runner=runner)
+rand_tab.groupby("initiator", sort=False)[["exact", "correct", "false"]].mean().round(3)
 
+# %% [markdown]
+# ### The paper's procedure without our constant-velocity check
+#
+# Errata: every "paper" row above includes our check of a confirmed cell. The bare procedure
+# (`cv_check=False`: the cell's points, one per frame) on the planted scenes:
+
+# %%
+bare_rows = []
+_lit_kw = {"d_rho": cfg.cell_rho_px, "d_theta_deg": cfg.cell_theta_deg, "d_v": cfg.cell_v_px_s,
+           "v_min": pl_cfg.v_gate_px_s[0], "v_max": pl_cfg.v_gate_px_s[1], "literal": True}
+_bare_rng = np.random.default_rng(pl_cfg.seed + 1)
+_bare_scenes = [TH.planted_scene(_bare_rng, pl_cfg) for _ in range(max(3, N["aux"] // 2))]
+for name, chk in (("paper + our check", True), ("paper, bare", False)):
+    ini = ModifiedHoughInitiator(**_lit_kw, cv_check=chk)
+    res = [TH.score_tracks(ini.initiate(sc.frames), sc) for sc in _bare_scenes]
+    bare_rows.append({"procedure": name, "scenes": len(res),
+                      "recall": sum(r["correct"] for r in res) / max(sum(r["eligible"] for r in res), 1),
+                      "false per scene": np.mean([r["false"] for r in res])})
+bare = pd.DataFrame(bare_rows).set_index("procedure")
+display(Markdown(
+    f"Without the check: recall {bare.loc['paper, bare', 'recall']:.3f} (with it "
+    f"{bare.loc['paper + our check', 'recall']:.3f}; the planted criterion asks ≥ "
+    f"{p_pl['recall_min']}), {bare.loc['paper, bare', 'false per scene']:.1f} false tracks per "
+    f"scene (with it {bare.loc['paper + our check', 'false per scene']:.1f})."))
+bare.round(3)
+
+# %% [markdown]
+# ### A held-out family (issue 27's "Generalise" target)
+#
+# Scenes nobody tuned to: 8 irregular frames (0.6–1.6 s apart), P_D 0.8, a burst of 150 false
+# alarms in one frame, objects accelerating by up to ±3 px/s² along and across track. The
+# target and the decisive seed (`TH.HELDOUT_SEED`, `TH.HELDOUT_TARGETS`; first written into
+# `benchmarks/bench_track_init_hough.py`) were fixed before that seed was first drawn: recall ≥ 0.90 with no
+# more false tracks than logic 3/4, at ≤ 5 ms/frame for 200 candidates. Beside the default,
+# the opt-ins `TH.HELDOUT_OPTS` (chosen on seeds 11 and 777, so exploratory): **hold-and-confirm**
+# (a 3-hit candidate waits one frame, so a 4-hit track through its detections wins), an
+# **acceleration-aware** χ² for 3 hits (the acceleration's variance added to the second
+# difference) with **4-hit quadratic extensions**, its widening capped so that a disc holds
+# at most `chance_budget` chance triplets (**density-aware**: the burst frame keeps the
+# constant-velocity disc). The benchmark runs 60 scenes; here fewer:
+
+# %%
 from eotrack.tracking.initiation import LogicInitiator
 
 held_inits = {"ours (default)": ModifiedHoughInitiator(v_min=3, v_max=240),
-              "ours, accel_gapped": ModifiedHoughInitiator(v_min=3, v_max=240, accel_gapped=True),
+              "ours + HELDOUT_OPTS": ModifiedHoughInitiator(v_min=3, v_max=240, **TH.HELDOUT_OPTS),
               "logic 3/4": LogicInitiator(n=3, m=4, v_min=3, v_max=240, gate_px=10.0)}
 held_rows = []
-for acc in (3.0, 5.0):
-    h_cfg, h_rng = _replace(TH.HeldOutConfig(), accel_px_s2=acc), np.random.default_rng(777)
+for seed_h in (777, TH.HELDOUT_SEED):
+    h_rng = np.random.default_rng(seed_h)
     tot = {k: np.zeros(3) for k in held_inits}
     n_held = max(2, N["aux"] // 2)
     for _ in range(n_held):
-        h_sc = TH.heldout_scene(h_rng, h_cfg)
+        h_sc = TH.heldout_scene(h_rng, TH.HeldOutConfig())
         for name, ini in held_inits.items():
             r = TH.score_tracks(ini.initiate(h_sc.frames), h_sc)
             tot[name] += (r["correct"], r["eligible"], r["false"])
-    held_rows += [{"accel (px/s²)": acc, "initiator": k, "scenes": n_held,
-                   "recall": c / max(e, 1), "false per scene": f / n_held}
-                  for k, (c, e, f) in tot.items()]
+    held_rows += [{"seed": f"{seed_h} ({'held out' if seed_h == TH.HELDOUT_SEED else 'tuning'})",
+                   "initiator": k, "scenes": n_held, "recall": c / max(e, 1),
+                   "false per scene": f / n_held} for k, (c, e, f) in tot.items()]
 held = pd.DataFrame(held_rows)
+_h = held[held["seed"].str.contains("held out")].set_index("initiator")
+_met = (_h.loc["ours + HELDOUT_OPTS", "recall"] >= TH.HELDOUT_TARGETS["recall"]
+        and _h.loc["ours + HELDOUT_OPTS", "false per scene"] <= _h.loc["logic 3/4", "false per scene"])
+display(Markdown(
+    f"Held-out seed, {n_held} scenes: default recall {_h.loc['ours (default)', 'recall']:.3f}, "
+    f"with the opt-ins {_h.loc['ours + HELDOUT_OPTS', 'recall']:.3f} "
+    f"({_h.loc['ours + HELDOUT_OPTS', 'false per scene']:.1f} false tracks per scene; logic 3/4 "
+    f"{_h.loc['logic 3/4', 'recall']:.3f}, {_h.loc['logic 3/4', 'false per scene']:.1f}). "
+    f"Target {'met' if _met else '**not met**'} here. What is left: objects seen only three "
+    "times while accelerating, whose three detections are claimed by chance triplets "
+    "before a test can tell them apart."))
 held.round(3)
 
 # %% [markdown]

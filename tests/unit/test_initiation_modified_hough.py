@@ -330,3 +330,94 @@ def test_gapped_accelerating_windows_are_opt_in():
     assert found(ModifiedHoughInitiator(v_min=3, v_max=240)) < 3
     with pytest.raises(TypeError, match="accel_gapped"):
         ModifiedHoughInitiator(accel_gapped="yes")
+
+
+# --- issue 27, round 3: hold-and-confirm, acceleration-aware triplets, the bare procedure -----
+def _stolen_scene(seed=5):
+    """One accelerating object in 4 irregular frames and a false alarm placed exactly where the
+    constant-velocity prediction from its first two detections puts frame 2's hit."""
+    rng = np.random.default_rng(seed)
+    t = np.array([0.0, 1.5, 2.6, 4.0])
+    p0, v0, acc = np.array([100.0, 120.0]), np.array([40.0, 15.0]), np.array([3.0, -2.5])
+    pos = [p0 + v0 * tk + 0.5 * acc * tk**2 for tk in t]
+    obs = [p + rng.normal(0, 0.3, 2) for p in pos]
+    tau = (t[2] - t[1]) / (t[1] - t[0])
+    decoy = (1 + tau) * obs[1] - tau * obs[0]  # on the chord: a perfect CV triplet
+    frames = []
+    for k in range(4):
+        xy = [obs[k]] + ([decoy] if k == 2 else [])
+        xy = np.vstack([*xy, rng.uniform(300, 500, (3, 2))])  # far clutter
+        frames.append((float(t[k]), xy))
+    return frames
+
+
+def _pure_object(tracks, frames):
+    # the object is detection 0 of every frame (the decoy is detection 1 of frame 2)
+    return [tr for tr in tracks if all(d == 0 for f, d in tr.hits if f <= tr.confirmed_at)]
+
+
+def test_hold_and_confirm_prefers_the_longer_track():
+    frames = _stolen_scene()
+    plain = ModifiedHoughInitiator(v_min=3, v_max=240).initiate(frames)
+    held = ModifiedHoughInitiator(v_min=3, v_max=240, hold_triplets=True).initiate(frames)
+    # without holding, the decoy triplet is confirmed at frame 2 and takes the object's hits
+    assert not _pure_object(plain, frames)
+    good = _pure_object(held, frames)
+    assert len(good) == 1 and len(good[0].hits) == 4 and good[0].confirmed_at == 3
+    with pytest.raises(TypeError, match="hold_triplets"):
+        ModifiedHoughInitiator(hold_triplets=1)
+
+
+def test_acceleration_aware_triplets_find_a_three_hit_accelerating_object():
+    t = np.array([0.0, 1.4, 3.0])
+    p0, v0, acc = np.array([60.0, 300.0]), np.array([35.0, -20.0]), np.array([3.0, 2.8])
+    frames = [(float(tk), (p0 + v0 * tk + 0.5 * acc * tk**2)[None]) for tk in t]
+    cv = ModifiedHoughInitiator(v_min=3, v_max=240).initiate(frames)
+    aware = ModifiedHoughInitiator(v_min=3, v_max=240, accel_triplets=True).initiate(frames)
+    assert cv == [] and len(aware) == 1 and aware[0].info["n_hits"] == 3
+    # off when there is no acceleration allowance
+    assert ModifiedHoughInitiator(v_min=3, v_max=240, accel_triplets=True,
+                                  accel_px_s2=0.0).initiate(frames) == []
+    with pytest.raises(ValueError, match="chance_budget"):
+        ModifiedHoughInitiator(chance_budget=-1.0)
+
+
+def test_density_cap_keeps_the_constant_velocity_disc_in_a_burst():
+    """With a tiny chance budget the widened disc falls back to the constant-velocity one."""
+    rng = np.random.default_rng(2)
+    frames = [(float(k), rng.uniform(0, 512, (150, 2))) for k in range(4)]
+    cv = ModifiedHoughInitiator(v_min=3, v_max=240).run(frames, log=True)
+    capped = ModifiedHoughInitiator(v_min=3, v_max=240, accel_triplets=True,
+                                    chance_budget=1e-9).run(frames, log=True)
+    wide = ModifiedHoughInitiator(v_min=3, v_max=240, accel_triplets=True,
+                                  chance_budget=0.0).run(frames, log=True)
+    n = [sum(e["triplets"] for e in r.log) for r in (cv, capped, wide)]
+    assert n[0] == n[1] < n[2]
+
+
+def test_bare_procedure_skips_our_constant_velocity_check():
+    # two static stars 50 px apart fill one cell for three frames (§4.5): only the check stops it
+    stars = np.array([[100.0, 100.0], [150.0, 100.0]])
+    rng = np.random.default_rng(0)
+    frames = [(float(k), stars[[k % 2]] + rng.normal(0, 0.1, (1, 2))) for k in range(4)]
+    kw = {"literal": True, "v_min": 10.0, "v_max": 240.0}
+    assert ModifiedHoughInitiator(**kw).initiate(frames) == []
+    assert len(ModifiedHoughInitiator(**kw, cv_check=False).initiate(frames)) >= 1
+    with pytest.raises(TypeError, match="cv_check"):
+        ModifiedHoughInitiator(cv_check="no")
+
+
+def test_wide_acceleration_discs_cost_no_more_with_long_intervals():
+    """The occupancy image of the acceleration search stays bounded whatever Δt (cells ∝ r)."""
+    from eotrack.tracking.initiation import occupancy_image
+
+    pts = np.random.default_rng(3).uniform(0, 2048, (200, 2))
+    sizes = []
+    for r in (5.0, 50.0, 500.0, 5000.0):
+        _, _, _, w, h = occupancy_image(pts, r, cell_px=max(1.0, r / 6.0))
+        sizes.append(w * h)
+    assert max(sizes[1:]) <= sizes[0]
+    # same tracks with long intervals (the prefilter is a superset; the exact test decides)
+    fr = [(30.0 * k, pts + np.array([0.5, 0.2]) * 30.0 * k) for k in range(5)]
+    out = ModifiedHoughInitiator(v_min=0.1, v_max=3.0).initiate(fr)
+    assert len(out) >= 150

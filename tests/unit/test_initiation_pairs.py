@@ -134,3 +134,23 @@ def test_occupancy_image_covers_every_close_position(seed, radius):
         occupancy_image(pts, 0.0)
     with pytest.raises(ValueError, match="at least one"):
         occupancy_image(np.zeros((0, 2)), 1.0)
+
+
+@given(st.integers(0, 2**32 - 1), st.floats(0.5, 400.0), st.floats(1.0, 80.0))
+@settings(max_examples=30, deadline=None)
+def test_occupancy_image_in_coarse_cells_covers_every_close_position(seed, radius, cell):
+    from eotrack.tracking.initiation import occupancy_image
+
+    rng = np.random.default_rng(seed)
+    pts = rng.uniform(0, 500, (rng.integers(1, 30), 2))
+    occ, x0, y0, w, h = occupancy_image(pts, radius, cell_px=cell)
+    ang = rng.uniform(0, 2 * np.pi, (len(pts), 50))
+    rr = radius * np.sqrt(rng.uniform(0, 1, (len(pts), 50)))
+    q = (pts[:, None, :] + np.stack([rr * np.cos(ang), rr * np.sin(ang)], -1)).reshape(-1, 2)
+    ix = np.floor((q[:, 0] - x0) / cell).astype(int)
+    iy = np.floor((q[:, 1] - y0) / cell).astype(int)
+    assert np.all(occ[iy * w + ix] > 0)
+    img = occ.reshape(h, w)
+    assert not img[0].any() and not img[-1].any() and not img[:, 0].any() and not img[:, -1].any()
+    with pytest.raises(ValueError, match="cell_px"):
+        occupancy_image(pts, radius, cell_px=0.0)

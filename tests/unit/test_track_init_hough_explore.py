@@ -11,10 +11,12 @@ def test_plot_explore_updates_one_figure_with_the_results():
     again = TH.plot_explore(clutter=5.0, neighbourhood=26)
     assert again is fig  # the same figure, updated in place
     res = TH.explore_results(5.0, 26, False, False)
-    left, twin = fig.axes[0], fig.axes[2]
-    recall = [b.get_height() for b in left.patches]
-    np.testing.assert_allclose(recall, res["correct"] / np.maximum(res["eligible"], 1))
-    np.testing.assert_allclose([b.get_height() for b in twin.patches], res["false"])
+    left = fig.axes[0]
+    np.testing.assert_allclose([b.get_height() for b in left.patches], res["false"])
+    np.testing.assert_allclose(left.lines[0].get_ydata(), res["chance"])
+    recall = res["correct"].sum() / max(res["eligible"].sum(), 1)
+    title = " ".join(left.get_title(loc=k) for k in ("left", "center", "right"))
+    assert f"recall {recall:.2f}" in title
     # any title location (the house style, set earlier in the process, puts titles on the left)
     assert "26-nbhd" in " ".join(left.get_title(loc=k) for k in ("left", "center", "right"))
     good = fig.axes[1].lines[2]

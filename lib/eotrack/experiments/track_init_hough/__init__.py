@@ -26,6 +26,7 @@ import numpy as np
 import pandas as pd
 
 from eotrack.montecarlo import TrialRunner
+from eotrack.plotting import legend_outside
 from eotrack.repro import Reproduction, load_claims
 
 from .baselines import StoneSoupInitiator, stonesoup_comparison
@@ -55,6 +56,9 @@ from .figures import (
     plot_xu_frames,
 )
 from .scenario import (
+    HELDOUT_OPTS,
+    HELDOUT_SEED,
+    HELDOUT_TARGETS,
     SLUG,
     XU_TARGETS,
     ComparisonConfig,
@@ -82,6 +86,7 @@ from .trials import (
     summarise_metrics,
     summarise_planted,
     timing_table,
+    xu_random_tables,
     xu_redraws,
     xu_table2,
 )
@@ -90,6 +95,9 @@ __all__ = [
     "CHANCE_CHECK_FILE",
     "EXPLORE_CLUTTER",
     "EXPLORE_SCENES",
+    "HELDOUT_OPTS",
+    "HELDOUT_SEED",
+    "HELDOUT_TARGETS",
     "SLUG",
     "TITLE",
     "XU_TARGETS",
@@ -142,6 +150,7 @@ __all__ = [
     "triplet_shapes",
     "xu_config",
     "xu_initiator",
+    "xu_random_tables",
     "xu_redraws",
     "xu_table2",
 ]
@@ -258,18 +267,21 @@ def reproduce(*, quick: bool = False, runner: TrialRunner | None = None,
     fig, ax = plt.subplots(figsize=(5.4, 5.4))
     plot_xu_frames(scene, ax=ax)
     figs["fig2_candidates"] = fig
-    fig, axes = plt.subplots(1, 2, figsize=(10.5, 5.4))
+    fig, axes = plt.subplots(1, 2, figsize=(7.5, 6.4))
     plot_fig3(scene, tracks, ax=axes[0])
-    axes[0].set_title(f"Fig. 3 — paper's 6-neighbourhood ({len(tracks)} tracks)")
+    axes[0].set_title(f"6-neighbourhood ({len(tracks)} tracks)")
     plot_fig3(scene, all_tracks[26], ax=axes[1])
-    axes[1].set_title(f"Fig. 3 — 26-neighbourhood ({len(all_tracks[26])} tracks)")
+    axes[1].set_title(f"26-neighbourhood ({len(all_tracks[26])} tracks)")
+    fig.suptitle("Fig. 3 — extracted tracks, the paper's procedure")
     fig.tight_layout()
     figs["fig3_extracted_tracks"] = fig
-    fig, axes = plt.subplots(2, 2, figsize=(10, 7))
+    fig, axes = plt.subplots(2, 2, figsize=(7.5, 7.2))
     for i, sweep in enumerate(("clutter", "p_detect")):
         for j, metric in enumerate(("p_correct", "false_per_frame")):
             plot_comparison(comp, sweep, metric, ax=axes[j, i])
     fig.tight_layout()
+    legend_outside(fig, where="below", ncol=3)
+    fig.subplots_adjust(bottom=0.2)
     figs["comparison_monte_carlo"] = fig
     fig, ax = plt.subplots()
     plot_logic_false_tracks(logic_ft, ax=ax)

@@ -12,7 +12,7 @@ import numpy as np
 import pandas as pd
 from matplotlib.figure import Figure
 
-from eotrack.plotting import get_ax
+from eotrack.plotting import get_ax, legend_outside, log_axis
 from eotrack.tracking.initiation.base import Track, validate_frames
 from eotrack.tracking.initiation.modified_hough import ModifiedHoughInitiator, pair_parameters
 from eotrack.tracking.initiation.pairs import gated_pairs
@@ -47,7 +47,7 @@ def plot_xu_frames(scene: Scene, ax: plt.Axes | None = None) -> plt.Axes:
         ax.plot(*xy.T, "+", color=c, ms=7, label=f"frame {k + 1} candidates")
     _image_axes(ax, scene)
     ax.set_title("Candidates after star removal (4 frames)")
-    ax.legend(fontsize=7, loc="upper right")
+    legend_outside(ax, where="below", ncol=3)
     return ax
 
 
@@ -73,10 +73,10 @@ def plot_fig3(scene: Scene, tracks: list[Track], ax: plt.Axes | None = None) -> 
         line = ax.plot(*p.T, "-o", ms=4, label=f"{name}: frames "
                        f"{','.join(str(f + 1) for f in tr.frame_indices)}; conf. {tr.confirmed_at + 1}")
         ax.annotate(name.replace("track ", "T"), p[-1], xytext=(4, 4),
-                    textcoords="offset points", color=line[0].get_color(), fontsize=8)
+                    textcoords="offset points", color=line[0].get_color(), fontsize=9)
     _image_axes(ax, scene)
     ax.set_title(f"Fig. 3 — extracted tracks ({len(tracks)})")
-    ax.legend(fontsize=6.5, loc="lower right")
+    legend_outside(ax, where="below", ncol=1)
     return ax
 
 
@@ -96,7 +96,10 @@ def plot_comparison(df: pd.DataFrame, sweep: str, metric: str,
                    "false_per_frame": "false tracks per frame"}[metric])
     if metric == "false_per_frame":
         ax.set_yscale("symlog", linthresh=0.01)
-    ax.legend(fontsize=7)
+    ax.set_title({"p_correct": "correct initiations",
+                  "false_per_frame": "false tracks"}[metric]
+                 + (" vs clutter" if x == "clutter" else " vs P_D"))
+    legend_outside(ax, where="right")
     return ax
 
 
@@ -107,11 +110,11 @@ def plot_logic_false_tracks(df: pd.DataFrame, ax: plt.Axes | None = None) -> plt
         line = ax.plot(g["clutter"], g["analytic"], "-", label=f"{name} analytic")
         ax.plot(g["clutter"], g["measured"], "o", color=line[0].get_color(),
                 label=f"{name} measured")
-    ax.set_xscale("log")
-    ax.set_yscale("log")
+    log_axis(ax, "both")
     ax.set_xlabel("false alarms per frame")
     ax.set_ylabel("false tracks per frame")
-    ax.legend(fontsize=7)
+    ax.set_title("Logic rules in clutter only: measured and analytic")
+    legend_outside(ax, where="below", ncol=2)
     return ax
 
 
@@ -148,7 +151,9 @@ def plot_rho_theta_votes(scene: Scene, cfg: XuConfig | None = None, *, target: i
     """
     cfg = cfg or xu_config()
     if axes is None:
-        fig, axes = plt.subplots(1, 3, figsize=(13, 4.2))
+        fig = plt.figure(figsize=(7.5, 7.6))
+        gs = fig.add_gridspec(2, 2)
+        axes = [fig.add_subplot(gs[0, :]), fig.add_subplot(gs[1, 0]), fig.add_subplot(gs[1, 1])]
     else:
         fig = axes[0].figure
     pa, pb, dt, lab = _object_pairs(scene, cfg)
@@ -161,8 +166,8 @@ def plot_rho_theta_votes(scene: Scene, cfg: XuConfig | None = None, *, target: i
         ax.plot(np.degrees(th[s]), rho[s], "o", ms=5, mfc="none", label=f"object {i + 1}")
     ax.set_xlabel("θ (°)")
     ax.set_ylabel("ρ from the image corner (px)")
-    ax.set_title(f"all velocity-gated pairs ({len(rho)})", fontsize=9)
-    ax.legend(fontsize=6.5, loc="lower left")
+    ax.set_title(f"all velocity-gated pairs ({len(rho)})")
+    legend_outside(ax, where="right")
     sel = lab == target
     w = float(cfg.width_px)
     for ax, origin, name in ((axes[1], (0.0, 0.0), "image corner"),
@@ -189,8 +194,7 @@ def plot_rho_theta_votes(scene: Scene, cfg: XuConfig | None = None, *, target: i
         ax.xaxis.set_major_locator(plt.MaxNLocator(5))
         ax.set_xlabel("θ (°)")
         ax.set_ylabel(f"ρ from the {name} (px)")
-        ax.set_title(f"object {target + 1}, {int(sel.sum())} pairs, ρ from the {name}:\n"
-                     f"{verdict}", fontsize=9)
+        ax.set_title(f"object {target + 1}, ρ from the {name}:\n{verdict}", fontsize=9)
     fig.tight_layout()
     return fig
 
@@ -207,11 +211,11 @@ def plot_angle_constraint(df: pd.DataFrame, ax: plt.Axes | None = None) -> plt.A
                        label=f"logic 3/4, {lam:g} false alarms/frame")
         ax.plot(ang["gate_px"], ang["false_per_frame"], "--s", ms=4, mfc="none",
                 color=line[0].get_color(), label=f"angle-constrained, {lam:g}/frame")
-    ax.set_xscale("log")
-    ax.set_yscale("log")
+    log_axis(ax, "both")
     ax.set_xlabel("prediction gate radius (px)")
     ax.set_ylabel("false tracks per frame")
-    ax.legend(fontsize=7)
+    ax.set_title("Angle constraint versus the prediction gate")
+    legend_outside(ax, where="below", ncol=2)
     return ax
 
 
@@ -225,13 +229,14 @@ def plot_chance_check(df: pd.DataFrame, ax: plt.Axes | None = None) -> plt.Axes:
     ax.errorbar(df["clutter"], df["measured per scene"], yerr=err, fmt="o", ms=5,
                 label="measured (verified initiator, acceleration search off)")
     ax.set_xscale("log")
-    ax.set_yscale("log")
+    log_axis(ax, "y")
     ax.set_xticks(list(df["clutter"]))
     ax.xaxis.set_major_formatter(ScalarFormatter())
     ax.xaxis.set_minor_formatter(NullFormatter())
     ax.set_xlabel("clutter points per frame")
     ax.set_ylabel("chance tracks per scene")
-    ax.legend(fontsize=8)
+    ax.set_title("Chance tracks in clutter-only scenes")
+    legend_outside(ax, where="below", ncol=1)
     return ax
 
 
@@ -242,16 +247,17 @@ def plot_planted_summary(summary: pd.DataFrame, axes=None, *, recall_min: float 
     measured/analytic ratio (:func:`~.claims.calibrated_chance_factor`)."""
     check_positive(chance_factor, "chance_factor")
     if axes is None:
-        fig, axes = plt.subplots(1, 2, figsize=(11, 3.8))
+        fig, axes = plt.subplots(1, 2, figsize=(7.5, 4.4))
     else:
         fig = axes[0].figure
     y = np.arange(len(summary))
     axes[0].barh(y, summary["recall"], color="tab:blue")
-    axes[0].axvline(recall_min, color="k", ls="--", lw=1, label=f"criterion ≥ {recall_min:g}")
-    axes[0].set_yticks(y, summary["method"], fontsize=8)
-    axes[0].set_xlabel("recall (objects initiated / eligible)")
+    axes[0].axvline(recall_min, color="k", ls=":", lw=1.5, label=f"criterion ≥ {recall_min:g}")
+    axes[0].set_yticks(y, summary["method"])
+    axes[0].set_ylabel("initiator")
+    axes[0].set_xlabel("recall")
     axes[0].set_xlim(0, 1)
-    axes[0].legend(fontsize=7, loc="lower right")
+    axes[0].set_title("recall (initiated / eligible)")
     # markers, not bars: a bar's length means nothing on a log axis
     axes[1].plot(summary["false per scene"], y, "o", color="tab:red", label="measured")
     chance = chance_factor * float(summary["chance per scene"].iloc[0])
@@ -260,10 +266,12 @@ def plot_planted_summary(summary: pd.DataFrame, axes=None, *, recall_min: float 
                     label=f"criterion ≤ {ratio_max:g} × chance rate")
     axes[1].set_yticks(y, [""] * len(y))
     axes[1].set_ylim(-0.5, len(y) - 0.5)
-    axes[1].set_xscale("log")
+    log_axis(axes[1], "x")
     axes[1].set_xlabel("false tracks per scene")
-    axes[1].legend(fontsize=7)
+    axes[1].set_title("false tracks")
     fig.tight_layout()
+    legend_outside(fig, where="below", ncol=2)
+    fig.subplots_adjust(bottom=0.32)
     return fig
 
 
@@ -279,11 +287,17 @@ def plot_scene_tracks(scene: Scene, tracks: list[Track], ax: plt.Axes | None = N
     for i in range(scene.n_targets):
         ax.plot(*truth[:, i].T, ":", color="k", lw=1)
     sc = score_tracks(tracks, scene)
+    seen: set[bool] = set()
     for tr in tracks:
         ids = {int(scene.labels[f][d]) for f, d in tr.hits if f <= tr.confirmed_at}
         good = len(ids) == 1 and min(ids) >= 0
         ax.plot(*tr.positions(fr).T, "-o" if good else "-x", ms=3,
-                color="tab:green" if good else "tab:red")
+                color="tab:green" if good else "tab:red",
+                label=None if good in seen else ("correct track" if good else "false track"))
+        seen.add(good)
+    if scene.n_targets:
+        ax.lines[1].set_label("true path")
+    legend_outside(ax, where="below", ncol=3)
     ax.set_xlim(0, width)
     ax.set_ylim(width, 0)
     ax.set_aspect("equal")
@@ -365,31 +379,27 @@ def _explore_artists(n_scenes: int) -> dict[str, Any]:
     if _EXPLORE.get("n") == n_scenes:
         return _EXPLORE
     _EXPLORE.clear()
-    fig = Figure(figsize=(10.5, 4.3))
+    fig = Figure(figsize=(7.5, 4.8))
     ax, axr = fig.subplots(1, 2)
     x = np.arange(n_scenes)
     zeros = np.zeros(n_scenes)
     art: dict[str, Any] = {"n": n_scenes, "fig": fig, "ax": ax, "axr": axr}
-    art["recall"] = ax.bar(x - 0.2, zeros, 0.4, color="tab:blue", label="recall")
-    ax.set_ylim(0, 1.05)
-    ax.set_ylabel("recall per scene")
+    # false tracks per scene (bars) against the chance rate; recall is in the title
+    art["false"] = ax.bar(x, zeros, 0.6, color="tab:red", label="false tracks")
+    art["chance"] = ax.plot(x, zeros, "k_", ms=18, mew=2, label="chance rate (χ² 3-of-4)")[0]
+    ax.set_ylabel("false tracks per scene")
     ax.set_xlabel("scene")
     ax.set_xticks(x)
-    ax2 = ax.twinx()
-    art["ax2"] = ax2
-    art["false"] = ax2.bar(x + 0.2, zeros, 0.4, color="tab:red", label="false tracks")
-    art["chance"] = ax2.plot(x + 0.2, zeros, "k_", ms=14, mew=2,
-                             label="chance rate (χ² 3-of-4)")[0]
-    ax2.set_ylabel("false tracks per scene")
-    h1, l1 = ax.get_legend_handles_labels()
-    h2, l2 = ax2.get_legend_handles_labels()
-    ax2.legend(h1 + h2, l1 + l2, fontsize=6.5, loc="lower left", framealpha=0.95)
-    art["title"] = ax.set_title("\n", fontsize=8.5)
+    art["ax2"] = ax
+    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=1)
+    art["title"] = ax.set_title("\n", fontsize=9)
     # the first scene: every polyline of a kind is one line, pieces separated by NaN
     art["detections"] = axr.plot([], [], ".", color="0.7", ms=3)[0]
     art["truth"] = axr.plot([], [], ":", color="k", lw=1)[0]
-    art["good"] = axr.plot([], [], "-o", ms=3, color="tab:green")[0]
-    art["bad"] = axr.plot([], [], "-x", ms=3, color="tab:red")[0]
+    art["good"] = axr.plot([], [], "-o", ms=3, color="tab:green", label="correct track")[0]
+    art["bad"] = axr.plot([], [], "-x", ms=3, color="tab:red", label="false track")[0]
+    art["truth"].set_label("true path")
+    axr.legend(loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=2)
     w = PlantedConfig().width_px
     axr.set_xlim(0, w)
     axr.set_ylim(w, 0)
@@ -397,7 +407,7 @@ def _explore_artists(n_scenes: int) -> dict[str, Any]:
     axr.set_xlabel("x (px)")
     axr.set_ylabel("y (px)")
     art["title_r"] = axr.set_title("", fontsize=9)
-    fig.subplots_adjust(left=0.07, right=0.97, bottom=0.12, top=0.86, wspace=0.45)
+    fig.subplots_adjust(left=0.09, right=0.97, bottom=0.36, top=0.84, wspace=0.55)
     _EXPLORE.update(art)
     return _EXPLORE
 
@@ -413,8 +423,8 @@ def _joined(polylines: list[np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
 
 def plot_explore(clutter: float = 20.0, neighbourhood: int = 6, centred: bool = False,
                  verified: bool = False):
-    """The Explore panel's figure: recall and false tracks per scene over the panel's scenes
-    against the chance rate (left) and the first scene's tracks (right), for one variant.
+    """The Explore panel's figure: false tracks per scene over the panel's scenes against the
+    chance rate, with the recall in the title (left) and the first scene's tracks (right), for one variant.
 
     The figure is built once and its bars and lines updated on every call (the same
     ``Figure`` is returned), so a widget redraw costs one render.
@@ -422,9 +432,6 @@ def plot_explore(clutter: float = 20.0, neighbourhood: int = 6, centred: bool = 
     res = explore_results(float(clutter), int(neighbourhood), bool(centred), bool(verified))
     n = len(res["false"])
     art = _explore_artists(n)
-    recall = res["correct"] / np.maximum(res["eligible"], 1)
-    for bar, h in zip(art["recall"].patches, recall, strict=True):
-        bar.set_height(h)
     for bar, h in zip(art["false"].patches, res["false"], strict=True):
         bar.set_height(h)
     art["chance"].set_ydata(res["chance"])
@@ -441,5 +448,5 @@ def plot_explore(clutter: float = 20.0, neighbourhood: int = 6, centred: bool = 
     art["good"].set_data(*_joined([pos for pos, good in res["tracks"] if good]))
     art["bad"].set_data(*_joined([pos for pos, good in res["tracks"] if not good]))
     art["title_r"].set_text(f"scene 0: {int(res['correct'][0])}/{int(res['eligible'][0])} "
-                            f"objects, {int(res['false'][0])} false (green: correct, red: false)")
+                            f"objects, {int(res['false'][0])} false")
     return art["fig"]

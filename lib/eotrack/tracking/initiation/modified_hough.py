@@ -156,8 +156,13 @@ class ModifiedHoughInitiator:
     chance_budget
         With ``accel_triplets``: the acceleration widening of a triplet shape's third-point
         disc is cut so that the disc holds at most this many chance triplets in expectation
-        (uniform clutter over the target frame's bounding box, all velocity-gated seed pairs);
-        never below the constant-velocity disc. ``0`` lifts the cut.
+        (uniform clutter over the bounding box of all detections, all velocity-gated seed
+        pairs); never below the constant-velocity disc. ``0`` lifts the cut.
+    cv_check
+        Literal procedure only: our constant-velocity check of a confirmed cell (one
+        detection per frame whose consecutive pairs map to the cell or a 26-neighbour, all
+        within δρ/2 of their constant-velocity fit). ``False`` runs the paper's bare procedure:
+        the hits are the cell's points, one per frame (the one nearest the fit).
     """
 
     d_rho: float = 5.0
@@ -178,6 +183,7 @@ class ModifiedHoughInitiator:
     accel_triplets: bool = False
     hold_triplets: bool = False
     chance_budget: float = 2.0
+    cv_check: bool = True
 
     def __post_init__(self) -> None:
         check_positive(self.d_rho, "d_rho")
@@ -197,7 +203,7 @@ class ModifiedHoughInitiator:
             raise ValueError(f"alpha must lie in (0, 1), got {self.alpha}")
         check_positive(self.accel_px_s2, "accel_px_s2", allow_zero=True)
         check_positive(self.chance_budget, "chance_budget", allow_zero=True)
-        for name in ("accel_gapped", "accel_triplets", "hold_triplets"):
+        for name in ("accel_gapped", "accel_triplets", "hold_triplets", "cv_check"):
             if not isinstance(getattr(self, name), (bool, np.bool_)):
                 raise TypeError(f"{name} must be True or False, got {getattr(self, name)!r}")
         if not self.literal and self.m < 4:
@@ -649,9 +655,12 @@ class _Engine:
 
         Every consecutive pair maps to ``cell`` or a 26-neighbour of it, and every hit lies
         within half a ρ cell (δρ/2) of the least-squares constant-velocity fit through them.
+        With ``cv_check=False`` (the bare procedure) every choice of one hit per frame passes.
         """
         if len(hits) < 2:
             return False
+        if not self.cfg.cv_check:
+            return True
         if len(hits) > 2:
             r2 = _cv_residuals(self.times[hits[:, 0]],
                                self.xy_flat[self.off[hits[:, 0]] + hits[:, 1]])
@@ -733,6 +742,9 @@ class _VerifiedEngine:
         self.avail_flat = np.ones(int(self.off[-1]), dtype=bool)
         self.available = [self.avail_flat[self.off[f]:self.off[f + 1]] for f in range(len(xys))]
         self.xy_flat = np.concatenate(xys) if self.off[-1] else np.zeros((0, 2))
+        # the field: bounding box of every frame's detections (at least 1 px²)
+        self.field_area = (max(float(np.prod(np.ptp(self.xy_flat, axis=0) + 1.0)), 1.0)
+                           if len(self.xy_flat) else 1.0)
         self.frame_of = np.repeat(np.arange(len(xys)), sizes)
         self.handoff = TrackHandOff(cfg.handoff_gate_px)
         self.log: list[dict] = []
@@ -767,11 +779,11 @@ class _VerifiedEngine:
             if self.chance_budget > 0:  # 0: no cut
                 # density-aware: the disc may not hold more than `chance_budget` chance triplets
                 # in expectation (uniform clutter over the target frame's bounding box)
-                pt = self.xys[ft][self.available[ft]]
-                area = max(float(np.prod(np.ptp(pt, axis=0) + 1.0)), 1.0)
+                n_t = int(self.available[ft].sum())
+                area = self.field_area
                 n_pairs = len(ia_all) * len(ib_all) * min(
                     1.0, math.pi * (cfg.v_max * dt) ** 2 / area)
-                r2_max = self.chance_budget * area / (math.pi * max(n_pairs * len(pt), 1.0))
+                r2_max = self.chance_budget * area / (math.pi * max(n_pairs * n_t, 1.0))
                 q_max = max(r2_max / self.thr[3] - var, 0.0) / (0.5 * (tt - ta) * (tt - tb)) ** 2
                 q = min(q, q_max)
             var += q * (0.5 * (tt - ta) * (tt - tb)) ** 2
