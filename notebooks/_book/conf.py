@@ -232,6 +232,19 @@ def _static_widgets(nb: dict) -> None:
             cell["outputs"] = outs
 
 
+#: what the kernel stores with each figure for the figure lint (eotrack.plotting.LINT_MIMETYPE;
+#: not imported: the book builds without importing the library's plotting stack)
+LINT_MIMETYPE = "application/vnd.eotrack.figure-lint+json"
+
+
+def _drop_lint_records(nb: dict) -> None:
+    """The figure lint's records are for ``tests/figures``, not for readers: drop them (myst-nb
+    would warn about an output type it cannot show)."""
+    for cell in nb.get("cells", []):
+        for out in cell.get("outputs", []):
+            out.get("data", {}).pop(LINT_MIMETYPE, None)
+
+
 _REPORT_IMG = re.compile(r"!\[(?P<stem>[A-Za-z0-9_]+)\]\((?P<path>figures/[^)]+\.png)\)")
 
 
@@ -256,6 +269,7 @@ def _on_source_read(app, docname: str, source: list[str]) -> None:
     if not path.is_file():
         return
     nb = json.loads(source[0])
+    _drop_lint_records(nb)
     _static_widgets(nb)
     _alt_texts(nb)
     if docname == root_doc:

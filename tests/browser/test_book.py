@@ -98,8 +98,11 @@ def test_book_has_every_page_and_nothing_remote(book):
 
 
 # --- static checks of the built HTML (issue 23) ---------------------------------------------
-SUBPACKAGES = ("astro", "exercises", "geometry", "imaging", "montecarlo", "notebook", "plotting",
-               "pose", "repro", "robust", "tracking", "validation")
+#: every public subpackage (and module) of the library but the per-paper experiments
+_LIB = ROOT / "lib" / "eotrack"
+SUBPACKAGES = tuple(sorted(
+    ({p.parent.name for p in _LIB.glob("*/__init__.py")} | {p.stem for p in _LIB.glob("*.py")})
+    - {"experiments"} - {p.stem for p in _LIB.glob("_*.py")}))
 #: pages whose figures are still shown below 80 % of their size (wider than 900 px), until
 #: their owners redraw them narrower (house style: at most ~8.2 in at 110 dpi); value: owner
 WIDE_FIGURES_XFAIL: dict[str, str] = {

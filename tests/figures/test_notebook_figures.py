@@ -97,3 +97,17 @@ def test_lint_record_of_a_figure():
     assert figure_lint_record(fig) == {"problems": []}
     rec = figure_lint_record("not a figure")
     assert rec["problems"][0][0] == "lint-error" and "TypeError" in rec["problems"][0][1]
+
+
+def test_book_drops_the_records_it_cannot_show():
+    """The book's conf.py removes the records under the same name (myst-nb warns, and ``-W``
+    fails, on an output type it cannot show)."""
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location("_book_conf", ROOT / "notebooks/_book/conf.py")
+    conf = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(conf)
+    assert conf.LINT_MIMETYPE == LINT_MIMETYPE
+    nb = {"cells": [{"outputs": [{"data": {"image/png": "x", LINT_MIMETYPE: {"problems": []}}}]}]}
+    conf._drop_lint_records(nb)
+    assert nb["cells"][0]["outputs"][0]["data"] == {"image/png": "x"}
