@@ -13,7 +13,7 @@ RAD = 180 / np.pi * 3600
 RIGHT = {
     # independent of the module: the formulas written out
     "capstone.1": lambda: 37_000.0 ** 2 * (1.0 / RAD) / 4_900.0,
-    "capstone.2": lambda: 7.292115e-5 * 20.0 * RAD * np.cos(np.radians(5.0)) / 15.0,
+    "capstone.2": lambda: 7.292115e-5 * 20.0 * RAD * np.cos(np.radians(30.0)) / 15.0,
     "capstone.3": lambda: 10 ** (-0.4 * (12.5 - 21.0)) / (2 * np.pi) / np.sqrt(6400 + 64),
     "capstone.4": lambda: "B",
     "capstone.5": lambda: _p_in(0.5, np.sqrt(2) * 0.3),
@@ -22,7 +22,7 @@ RIGHT = {
 
 WRONG = {
     "capstone.1": lambda: 37_000.0 * (1.0 / RAD) * 4_900.0,  # R σ B, not R² σ / B
-    "capstone.2": lambda: 15.04 * 20.0,  # arcseconds, not pixels
+    "capstone.2": lambda: 15.04 * 20.0 * np.cos(np.radians(30.0)),  # arcseconds, not pixels
     "capstone.3": lambda: 10 ** (-0.4 * (12.5 - 21.0)) / np.sqrt(6400),  # total flux, not peak
     "capstone.4": lambda: "D",
     "capstone.5": lambda: _p_in(0.5, 0.3),  # one point's σ, not √2 σ
@@ -30,6 +30,8 @@ WRONG = {
 }
 
 WRONG_MORE = {
+    "capstone.2": [lambda: 7.292115e-5 * 20.0 * RAD / 15.0,  # cos δ forgotten
+                   lambda: 7.292115e-5 * 20.0 * RAD * np.sin(np.radians(30.0)) / 15.0],
     "capstone.5": [lambda: 1 - _p_in(0.5, np.sqrt(2) * 0.3),  # outside, not inside
                    lambda: 0.99],  # the true pair's probability
     "capstone.6": [lambda: _max_rate() / 5.0,  # no margin

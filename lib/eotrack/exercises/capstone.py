@@ -14,7 +14,7 @@ def _range_error():
 def _drift():
     from eotrack.experiments import capstone as C
 
-    return C.sidereal_drift_px(C.CapstoneConfig(), dec_deg=-5.0)
+    return C.sidereal_drift_px(C.CapstoneConfig(), dec_deg=30.0)
 
 
 def _snr_6400():
@@ -42,10 +42,10 @@ def _gate_5():
 
 CRITIQUE_OPTIONS = (
     "A: the Earth's shadow lasts longer when the sky is brighter",
-    "B: false tracklets enter each object's RA/Dec series unfiltered, as gross errors far "
-    "beyond notebook 01's outlier model; triangulation only sees epipolar-consistent pairs",
+    "B: the wrong tracklets are other objects' — mutually consistent, so a minimal sample of "
+    "them is a good fit — and enter the series unfiltered",
     "C: two hours of data are too few for the sinusoid-plus-drift model at any noise level",
-    "D: the larger triangulation error propagates into the predicted angles",
+    "D: the triangulation error propagates into the predicted angles",
 )
 
 register("capstone.1", NumericAnswer(
@@ -59,26 +59,25 @@ register("capstone.1", NumericAnswer(
 
 register("capstone.2", NumericAnswer(
     "Computation. With the default cameras (15″ pixels, 20 s between frames) of a GEO-staring "
-    "mount, how many pixels does a star at declination −5° drift between two frames?",
+    "mount, how many pixels does a star at declination +30° drift between two frames?",
     expected=_drift, rtol=1e-2,
     hint="The sky turns at the Earth's rotation rate (7.292e-5 rad/s); a star at declination "
          "δ moves cos δ times that across the sky."))
 
 register("capstone.3", NumericAnswer(
-    "Exploration. In the Explore panel, move the sky background to 6,400 e⁻/px: the chain's "
-    "initiation recall falls to about one half. Read the target's peak signal-to-noise ratio "
-    "at that level from the figure title (or compute it).",
+    "Exploration. In the Explore panel, find the sky level at which the initiation recall "
+    "first falls below 0.9. What is the target's peak signal-to-noise ratio there (the "
+    "figure's title, or compute it)?",
     expected=_snr_6400, rtol=2e-2,
     hint="Peak pixel = flux / (2π σ²); noise = sqrt(sky + read noise²); the flux comes from "
          "the target magnitude and the zero point."))
 
 register("capstone.4", Choice(
-    "Critique. At 6,400 e⁻/px the triangulation error grows only a few-fold but the prediction "
-    "error through the eclipse explodes to thousands of arcseconds. Why? Answer with the "
-    "option's letter.",
+    "Critique. In notebook 07's Beyond table, the field series' RANSAC-type predictors fail far "
+    "worse than least squares in the cluster's field. Why? Answer with the option's letter.",
     options=("A", "B", "C", "D"), answer="B",
-    hint="Compare which tracklets each stage receives: the association stage gates on the "
-         "epipolar constraint; what gates the series the predictor fits?"))
+    hint="Which tracklets are the wrong ones in the cluster's field, and what does a RANSAC "
+         "minimal sample drawn only from them look like?"))
 
 register("capstone.5", NumericAnswer(
     "Derivation. The epipolar gate is g = σ_e √χ²₁(0.99) with σ_e = √2 × 0.3 px (both points' "

@@ -1004,6 +1004,7 @@ class NightResult:
     false_association: pd.DataFrame = field(default_factory=pd.DataFrame)
     sigma: dict = field(default_factory=dict)
     wall_s: dict = field(default_factory=dict)
+    error: str = ""  #: the stage error of a non-strict run (empty if every stage ran)
 
 
 def _rms(x) -> float:
@@ -1164,7 +1165,7 @@ def run_night(config: CapstoneConfig | None = None, *, runner: TrialRunner | Non
                                        "n_wrong", "eclipse_min", "rms_arcsec", "max_arcsec",
                                        "note"])
     t = time.perf_counter()
-    pairs, pred, status, sig = empty_pairs, empty_pred, pd.DataFrame(), {}
+    pairs, pred, status, sig, error = empty_pairs, empty_pred, pd.DataFrame(), {}, ""
     try:
         if not any(r.target_kept.any() for r in bursts):
             raise ValueError(f"stage 'extraction': no object detected in any of "
@@ -1180,13 +1181,14 @@ def run_night(config: CapstoneConfig | None = None, *, runner: TrialRunner | Non
             raise ValueError("stage 'association': no tracklet of one station matched one of "
                              "the other — do the stations observe at the same times?")
         pred, status = predict_through_eclipse(plan, bursts, pairs)
-    except ValueError:
+    except ValueError as e:
         if strict:
             raise
+        error = str(e)
     wall["cross-station"] = time.perf_counter() - t
     return NightResult(plan, bursts, pairs, pred,
                        error_budget(plan, bursts, pairs, pred, fa, sig), status, failures, fa,
-                       sig, wall)
+                       sig, wall, error)
 
 
 def _config(config) -> CapstoneConfig:
