@@ -38,10 +38,10 @@ def _look(ra: float, dec: float) -> np.ndarray:
 
 
 def scene(rng, ra, dec, *, scale=15.0, n=256, err_arcsec=120.0, roll_deg=0.3, noise_px=0.1,
-          n_false=10, drop=0.1, max_mag=10.0):
+          n_false=10, drop=0.1, max_mag=10.0, mirror=False):
     """Detections of a real star field (true camera) + the believed WCS (truth turned)."""
     f = ARCSEC / scale
-    K = np.array([[f, 0, (n - 1) / 2], [0, f, (n - 1) / 2], [0, 0, 1.0]])
+    K = np.array([[f, 0, (n - 1) / 2], [0, -f if mirror else f, (n - 1) / 2], [0, 0, 1.0]])
     R = _look(ra, dec)
     phi = rng.uniform(0, 2 * np.pi)
     e = err_arcsec / ARCSEC
@@ -110,6 +110,17 @@ def test_recovers_known_wcs_from_pointing_error(err):
     assert len(sol.residuals_arcsec) == sol.n_matched == len(sol.det_index) == len(sol.cat_index)
     # CRVAL at the frame centre, CRPIX ≈ image centre
     np.testing.assert_allclose(sol.wcs.wcs.crpix, [128.5, 128.5], atol=0.5)
+
+
+def test_mirrored_image_is_solved():
+    rng = np.random.default_rng(11)
+    xy, cat, wg, wt, _ = scene(rng, *FIELD, mirror=True, err_arcsec=150.0, roll_deg=-0.3)
+    assert np.linalg.det(wg.pixel_scale_matrix) < 0
+    sol = solve_plate(xy, cat, wg)
+    e = wcs_error_arcsec(sol.wcs, wt, 256, rng)
+    assert np.sqrt(np.mean(e ** 2)) < 2.5 * expected_error_arcsec(0.1, 15.0, sol.n_matched)
+    K, R = camera_from_wcs(sol.wcs)
+    assert K[1, 1] < 0 < K[0, 0] and np.linalg.det(R) == pytest.approx(1.0)
 
 
 def test_solution_maps_pixels_both_ways():

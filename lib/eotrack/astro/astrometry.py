@@ -613,6 +613,7 @@ def solve_plate(xy_px: Any, catalog_radec_deg: Any, wcs_guess: WCS, *,
     tangent = tuple(float(v) for v in w0.wcs_pix2world([c_guess], 0)[0])
     radec = cat[idx]
     q_all = _gnomonic(radec, tangent)
+    parity = float(np.sign(np.linalg.det(w0.pixel_scale_matrix)))
 
     def residuals(X: np.ndarray, i_d: np.ndarray, j_c: np.ndarray) -> np.ndarray:
         p = np.column_stack([xy[i_d], np.ones(len(i_d))])
@@ -627,7 +628,7 @@ def solve_plate(xy_px: Any, catalog_radec_deg: Any, wcs_guess: WCS, *,
         fit, then backward elimination (drop the worst pair while it exceeds k_clip robust σ).
         """
         if X0 is None:
-            keep = _lmeds_inliers(xy[i_d], q_all[j_c], k_clip, floor_as)
+            keep = _lmeds_inliers(xy[i_d], q_all[j_c], k_clip, floor_as, parity)
         else:
             res0 = residuals(X0, i_d, j_c)
             keep = res0 <= k_clip * _robust_sigma(res0, floor_as)
@@ -681,32 +682,38 @@ def solve_plate(xy_px: Any, catalog_radec_deg: Any, wcs_guess: WCS, *,
 
 
 def _lmeds_inliers(xy: np.ndarray, q: np.ndarray, k_clip: float, floor_arcsec: float,
-                   max_pairs: int = 14) -> np.ndarray:
-    """Inliers of the least-median-of-squares affine tangent-plane fit over triplets.
+                   parity: float, max_pairs: int = 20) -> np.ndarray:
+    """Inliers of the least-median-of-squares *similarity* fit over pairs of pairs.
 
-    Every triplet of the first ``max_pairs`` pairs (brightest detections first) determines
-    the affine map exactly; the one with the smallest median squared residual over all pairs
-    wins (robust to just under 50 % outliers), and pairs within ``k_clip`` robust σ of it are
-    the starting inliers. Deterministic; vectorised over the triplets.
+    A pinhole camera with square pixels maps the tangent plane to pixels by a similarity
+    (scale, rotation, shift; mirrored when ``parity < 0``), fixed by two stars. Every two of
+    the first ``max_pairs`` pairs (brightest detections first) give one; the one with the
+    smallest median squared residual over all pairs wins (robust to just under 50 %
+    outliers), and pairs within ``k_clip`` robust σ of it are the starting inliers. Four
+    parameters fitted to the whole field, not six to a corner of it: a cluster of stars cannot
+    pass for the field. Deterministic; vectorised.
     """
-    from itertools import combinations
-
     n = len(xy)
     if n < 4:
         return np.ones(n, bool)
-    P = np.column_stack([xy, np.ones(n)])
-    tri = np.array(list(combinations(range(min(n, max_pairs)), 3)))
-    A = P[tri]                                                 # (t, 3, 3)
-    det = np.linalg.det(A)
-    ok = np.abs(det) > 1e-6 * np.max(np.abs(det))
+    zp = xy[:, 0] + 1j * xy[:, 1]
+    if parity < 0:
+        zp = np.conj(zp)
+    zq = q[:, 0] + 1j * q[:, 1]
+    m = min(n, max_pairs)
+    i, j = np.triu_indices(m, 1)
+    dp = zp[j] - zp[i]
+    ok = np.abs(dp) > 5.0                 # two stars at least 5 px apart
     if not ok.any():
         return np.ones(n, bool)
-    X = np.linalg.solve(A[ok], q[tri[ok]])                     # (t, 3, 2)
-    r2 = np.sum((P @ X - q[None]) ** 2, axis=2) * _RAD_TO_ARCSEC ** 2
+    i, j, dp = i[ok], j[ok], dp[ok]
+    a = (zq[j] - zq[i]) / dp
+    b = zq[i] - a * zp[i]
+    r2 = np.abs(a[:, None] * zp[None] + b[:, None] - zq[None]) ** 2 * _RAD_TO_ARCSEC ** 2
     med = np.median(r2, axis=1)
     best = int(np.argmin(med))
-    # robust per-axis σ of a Rayleigh residual, with the small-sample factor of LMedS
-    sig = max(float(np.sqrt(med[best] / (2 * np.log(2)))) * (1 + 5.0 / max(n - 3, 1)),
+    dof = max(2 * n - 4, 1)
+    sig = max(float(np.sqrt(med[best] / (2 * np.log(2)) * 2 * n / dof)) * (1 + 5.0 / dof),
               floor_arcsec)
     keep = np.sqrt(r2[best]) <= k_clip * sig
     return keep if keep.sum() >= 3 else np.ones(n, bool)
@@ -714,10 +721,14 @@ def _lmeds_inliers(xy: np.ndarray, q: np.ndarray, k_clip: float, floor_arcsec: f
 
 def _robust_sigma(res: np.ndarray, floor: float) -> float:
     """Per-axis σ of 2-D residuals of a 6-parameter fit: the Rayleigh median, corrected for the
-    degrees of freedom the fit used (``2n / (2n − 6)`` in variance)."""
+    degrees of freedom the fit used (``2n / (2n − 6)`` in variance) and inflated by
+    ``1 + 5 / (2n − 6)`` for small samples."""
     n = len(res)
-    var = np.median(res ** 2) / (2 * np.log(2)) * (2 * n) / max(2 * n - 6, 1)
-    return max(float(np.sqrt(var)), floor)
+    dof = max(2 * n - 6, 1)
+    var = np.median(res ** 2) / (2 * np.log(2)) * (2 * n) / dof
+    # small-sample head-room (as in LMedS): a median of few residuals scatters by tens of %,
+    # and clipping at an underestimated σ would throw good stars away
+    return max(float(np.sqrt(var)) * (1.0 + 5.0 / dof), floor)
 
 
 def _residuals(wcs: WCS, xy: np.ndarray, radec: np.ndarray) -> np.ndarray:
