@@ -31,18 +31,15 @@
 #
 # After this notebook you can
 #
-# 1. compute the Hough parameters (ρ, θ, v, s) of a pair and explain how noise spreads one
-#    object's votes over cells;
-# 2. run the paper's voting and the logic *n/m* rule frame by frame and read their logs;
-# 3. replace cell counting by a χ² test at the noise and derive the **chance rate** of a 3-of-4
-#    rule;
-# 4. judge an initiator by recall, false tracks, GOSPA and SIAP on scenes it was not tuned to;
-# 5. say when the angle constraint of the logic rule can act.
+# 1. compute a pair's Hough parameters (ρ, θ, v, s) and say how noise spreads its votes;
+# 2. run the paper's voting and the logic *n/m* rule frame by frame;
+# 3. replace cell counting by a χ² test and derive the **chance rate** of a 3-of-4 rule;
+# 4. judge an initiator by recall, false tracks, GOSPA and SIAP on untuned scenes;
+# 5. say when the angle constraint can act.
 #
 # **Prerequisites.** Least-squares line fits; the χ² distribution; uniform (Poisson) clutter.
 #
-# **Scorecard** (written by `make repro` to `papers_repro/track_init_hough/`; recomputed in
-# section 6):
+# **Scorecard** (from `make repro`; recomputed in section 6):
 
 # %%
 import json
@@ -204,12 +201,10 @@ pd.DataFrame(run.log)[["frame", "candidates", "pairs", "created", "tentative", "
 #
 # ### 4.4 Drawing the (ρ, θ) voting; the 6- and 26-neighbourhoods
 #
-# Noise spreads the pairs of one object over neighbouring cells. For a cell $t \in S_k$ with
-# $P(t) < m - 1$ the paper looks at the **6-neighbourhood** (±1 cell in ρ, θ *or* v, same s) for
-# a $t'$ whose line is close to the least-squares line through $Q(t)$, and confirms when
-# $P(t) + P(t') = m - 1$. An object seen in three frames has only two pairs in the window; if
-# their cells differ in *two* of (ρ, θ, v) they are not 6-neighbours (they are
-# 26-neighbours: ±1 in any combination) and the object is lost.
+# Noise spreads one object's pairs over neighbouring cells. For a cell with $P(t) < m - 1$ the
+# paper looks in the **6-neighbourhood** (±1 cell in ρ, θ *or* v, same s) for a $t'$ as above.
+# An object seen in three frames has two pairs in the window; if their cells differ in *two*
+# of (ρ, θ, v) they are only 26-neighbours (±1 in any combination) and the object is lost.
 #
 # A pair's direction error $\sigma_\theta \approx \sqrt2\,\sigma/(v\,\Delta t)$ becomes a ρ
 # error of up to $|r|\,\sigma_\theta$, $r$ the distance from the **origin of ρ** (up to 724 px
@@ -230,21 +225,19 @@ fig = TH.plot_rho_theta_votes(scene, cfg, target=1)
 # **verified** initiator (`ModifiedHoughInitiator(literal=False)`, the library default) keeps
 # the 3-of-4 rule and the velocity gate and replaces cell counting by a test:
 #
-# * the hits $x_i$ at times $t_i$ of a candidate track are fitted by least squares with
-#   $x(t) = \bar x + u\,(t - \bar t)$, and the track passes when
+# * the hits $x_i$ at times $t_i$ are fitted with $x(t) = \bar x + u\,(t - \bar t)$; the
+#   track passes when
 #   $$\chi^2 = \frac{1}{\sigma^2}\sum_i \lVert x_i - \bar x - u\,(t_i - \bar t)\rVert^2
 #   \le \chi^2_{2(n-2)}(1-\alpha)$$
-#   for its $n$ hits (2 coordinates × (n − 2) degrees of freedom), with $v_{min} \le |u| \le
-#   v_{max}$;
+#   for $n$ hits, with $v_{min} \le |u| \le v_{max}$;
 # * for three hits the residual is one contrast $w^\top x$ with $\sum w_i = 0$, $\sum w_i t_i = 0$,
 #   i.e. $w \propto (t_2 - t_3,\; t_3 - t_1,\; t_1 - t_2)$, and $\chi^2 = (w^\top x)^2 /
-#   (\lVert w\rVert^2\sigma^2)$. So, given two hits, the third must lie in a **disc** of radius
-#   $\sigma\sqrt{c\,\chi^2_2(1-\alpha)}$ around the point the other two predict, $c$ a function
-#   of the three times (Exercise 1) — the engine looks that disc up for every seed pair at once;
-# * the triplets a 3-of-4 track can end with at frame k are $(k-2, k-1, k)$, $(k-3, k-2, k)$ and
-#   $(k-3, k-1, k)$; each is searched from a seed pair two frames apart; the passing triplets are
-#   extended to the window's fourth frame when it fits, ranked (more hits, then the fit's
-#   p-value) and accepted best first, each detection in one track;
+#   (\lVert w\rVert^2\sigma^2)$: given two hits, the third must lie in a **disc** of radius
+#   $\sigma\sqrt{c\,\chi^2_2(1-\alpha)}$ around their prediction, $c$ a function of the
+#   times (Exercise 1);
+# * the triplets ending at frame k, $(k-2, k-1, k)$, $(k-3, k-2, k)$, $(k-3, k-1, k)$, are
+#   extended to the window's fourth frame when it fits, ranked (more hits, then p-value) and
+#   accepted best first, each detection in one track;
 # * the default also searches **four-hit constant-acceleration** tracks over frames k−3…k
 #   (`accel_px_s2 = 3.0`, quadratic fit, χ² with 2 d.o.f.) in the same ranking. Every "ours"
 #   number of §5–§7 uses this default; §4.6's formula and its check describe the rule with the
@@ -280,11 +273,10 @@ pd.DataFrame(run.log)
 # %% [markdown]
 # ### 4.6 The chance rate of the 3-of-4 rule
 #
-# How many false tracks must *any* initiator that applies this test make? Let the non-object
-# detections (clutter and residual stars) be uniform in the field of area $A$, $N_f$ of them in
-# frame f. Three of them, in frames $t_1 < t_2 < t_3$, pass when the outer two are a gated
-# distance apart and the middle one falls in its disc, which lies inside the field (the
-# interpolated point is between the outer two):
+# How many false tracks must any initiator applying this test make? Let the non-object
+# detections be uniform in the field of area $A$, $N_f$ in frame f. Three of them, in frames
+# $t_1 < t_2 < t_3$, pass when the outer two are a gated distance apart and the middle one falls
+# in its disc:
 #
 # $$P_3(t_1,t_2,t_3) = D(t_3 - t_1)\;\frac{\pi\,\chi^2_2(1-\alpha)\,\sigma^2\,c}{A},\qquad
 #   c = 1 + \lambda^2 + (1-\lambda)^2,\quad \lambda = \frac{t_2 - t_1}{t_3 - t_1},$$
@@ -473,17 +465,15 @@ angle.pivot_table(index=["clutter", "gate_px"], columns="method",
 # %% [markdown]
 # ### Planted scenes — scenes the initiators were not tuned to
 #
-# The paper shows one 4-frame scene. Its claim — several objects initiated in a few frames, residual
-# stars no obstacle — is tested on `N["planted"]` random scenes (criterion fixed in claims.toml
-# before the run): 2–8 objects at 5–150 px/s in random directions, each detection missed with
+# The paper's claim — several objects initiated in a few frames, residual stars no obstacle — on
+# `N["planted"]` random scenes (criterion fixed in claims.toml before the run): 2–8 objects at 5–150 px/s in random directions, each detection missed with
 # probability 0.1, 10–40 static residual stars, uniform clutter of 5–50 per frame, σ = 0.3 px;
 # every initiator gets the gate [3, 240] px/s. First the chance rate of §4.6 against clutter-only
 # scenes (acceleration search off, the rule the formula describes); the planted criterion
 # multiplies the formula by the pooled measured/analytic ratio. Chance tracks are rare at low
-# density, so the check runs more scenes there (the standard errors are printed below, with
-# what 100 scenes per level would give). `make repro` runs it and writes
-# `papers_repro/track_init_hough/chance_rate_check.csv`, which this cell reads; with
-# `QUICK = True`, or without that file, it runs the test suite's 10 scenes per level.
+# density, so the check runs more scenes there (standard errors below, with what 100 scenes
+# per level would give). This cell reads `make repro`'s `chance_rate_check.csv`; with
+# `QUICK = True`, or without it, it runs 10 scenes per level.
 
 # %%
 _chance_file = papers_repro_dir() / TH.SLUG / TH.CHANCE_CHECK_FILE
@@ -622,10 +612,9 @@ explore = panel(draw, tight=False,
 # %% [markdown]
 # ## 8 · Errata and deviations
 #
-# * **Tables 1 and 2 are lost.** Table 1 is ours, changed twice after seeing results (recorded
-#   as after-results history); the redraws vary only stars and noise, so "not reproduced" is
-#   partly a property of our Table 1 (Beyond: random tables). Table 2 is reproduced in form
-#   only; the residual-star fraction is assumed.
+# * **Tables 1 and 2 are lost.** Table 1 is ours, changed twice after seeing results (in the
+#   claim's history); its redraws vary only stars and noise (Beyond redraws the table). Table 2
+#   is reproduced in form only; the residual-star fraction is assumed.
 # * **Eq. (8)** read as "+1 per current frame" contradicts the paper's confirmation frames; we
 #   count distinct frames in Q(t) (§4.3). The lost formulas are rebuilt in §4.3 (numbering
 #   uncertain).
@@ -634,9 +623,8 @@ explore = panel(draw, tight=False,
 # * **Constant-velocity check** (ours): a confirmed cell must give one detection per frame on a
 #   constant-velocity track of the cell (pairs in the cell or a 26-neighbour, residual ≤ δρ/2).
 #   Every "modified Hough 3/4 (paper)" row includes it; Beyond runs the bare procedure.
-# * **6-neighbourhood**: an object seen in three frames is lost when its two pair cells are not
-#   6-neighbours. The 26-neighbourhood and the verified initiator are *variants*; they cannot
-#   make the paper's claim reproduced.
+# * **Variants** (26-neighbourhood, verified initiator) cannot make the paper's claim
+#   reproduced.
 # * **Planted yardstick**: the chance rate is our χ² rule's, not that of the paper's cell.
 # * **Logic details** left open: heads stay open for their window, a 10 px gate, conflicts to
 #   the track with more points. At that gate the angle constraint cannot act (§4.7).
@@ -674,10 +662,9 @@ lf
 # %% [markdown]
 # ### Stone Soup's `MultiMeasurementInitiator`
 #
-# The same seeded scenes given to Stone Soup [6]: a constant-velocity Kalman model, a wide
-# velocity prior, a Mahalanobis gate, global nearest neighbour, confirmation at 3 updates.
-# Without clutter it finds every object; with 10 clutter points per frame its P_correct falls
-# (table below). The cell after it looks at the lost objects.
+# The same seeded scenes given to Stone Soup [6] (constant-velocity Kalman model, wide velocity
+# prior, Mahalanobis gate, global nearest neighbour, confirmation at 3 updates); the cell after
+# the table looks at the objects it loses.
 
 # %%
 try:
@@ -747,17 +734,14 @@ bare.round(3)
 # %% [markdown]
 # ### A held-out family (issue 27's "Generalise" target)
 #
-# Scenes nobody tuned to: 8 irregular frames (0.6–1.6 s apart), P_D 0.8, a burst of 150 false
-# alarms in one frame, objects accelerating by up to ±3 px/s² along and across track. The
-# target and the decisive seed (`TH.HELDOUT_SEED`, `TH.HELDOUT_TARGETS`; first written into
-# `benchmarks/bench_track_init_hough.py`) were fixed before that seed was first drawn: recall ≥ 0.90 with no
-# more false tracks than logic 3/4, at ≤ 5 ms/frame for 200 candidates. Beside the default,
-# the opt-ins `TH.HELDOUT_OPTS` (chosen on seeds 11 and 777, so exploratory): **hold-and-confirm**
-# (a 3-hit candidate waits one frame, so a 4-hit track through its detections wins), an
-# **acceleration-aware** χ² for 3 hits (the acceleration's variance added to the second
-# difference) with **4-hit quadratic extensions**, its widening capped so that a disc holds
-# at most `chance_budget` chance triplets (**density-aware**: the burst frame keeps the
-# constant-velocity disc). The benchmark runs 60 scenes; here fewer:
+# 8 irregular frames (0.6–1.6 s apart), P_D 0.8, a burst of 150 false alarms in one frame,
+# objects accelerating by up to ±3 px/s². Target and decisive seed (`TH.HELDOUT_TARGETS`,
+# `TH.HELDOUT_SEED`) were fixed before that seed was first drawn: recall ≥ 0.90, no more false
+# tracks than logic 3/4. Beside the default, the opt-ins `TH.HELDOUT_OPTS` (chosen on seeds 11
+# and 777: exploratory): **hold-and-confirm** (a 3-hit candidate waits a frame, so a 4-hit
+# track through its detections wins), an **acceleration-aware** χ² for 3 hits with 4-hit
+# quadratic extensions, its widening **density-capped** (a disc holds at most `chance_budget`
+# chance triplets). The benchmark runs 60 scenes; here fewer:
 
 # %%
 from eotrack.tracking.initiation import LogicInitiator
@@ -795,9 +779,10 @@ held.round(3)
 # %% [markdown]
 # ### Speed
 #
-# The engine is built from array operations: velocity-gated pairs in one broadcast, the third
-# detection looked up for every seed pair at once (a dilated occupancy image, then a spatial
-# grid inside the χ² disc), fits in batch, conflicts in parallel rounds. The benchmark
+# The engine is built from array operations: the third detection looked up for every seed
+# pair at once (an occupancy image in cells proportional to the disc, so wide acceleration
+# discs cost no more, then a spatial grid inside the χ² disc), fits in batch, conflicts in
+# parallel rounds. The benchmark
 # (`benchmarks/bench_track_init_hough.py`) times it per frame against uniform candidates; here
 # one small measurement (machine-dependent, not part of any claim):
 
@@ -827,15 +812,14 @@ display(Markdown(f"Verified initiator, 200 uniform candidates per frame: {steady
 # %% [markdown]
 # ## 10 · Key points
 #
-# * Pairs of detections vote for a line, a speed and a direction; a cell's frame count is a
-#   3-of-4 rule. Cells quantise what noise spreads continuously, more so far from ρ's origin.
-# * A χ² test of the constant-velocity fit at the noise is the same rule with the right
-#   tolerance; best fit first keeps objects' detections from chance tracks.
-# * A 3-of-4 rule has a chance rate ∝ λ³σ²/A, less the triples that share a detection: compute
-#   it before judging false tracks.
-# * Two hits carry no test (2/3), and a line cell knows no time (classic Hough): both lose most
-#   objects in clutter.
-# * Judge initiators on many random scenes, by recall, false tracks, GOSPA and SIAP.
+# * Pairs vote for line, speed and direction; cells quantise what noise spreads, more so far
+#   from ρ's origin.
+# * A χ² test at the noise is the same 3-of-4 rule with the right tolerance; best fit first
+#   keeps objects' detections from chance tracks.
+# * A 3-of-4 rule has a chance rate ∝ λ³σ²/A: compute it before judging false tracks.
+# * Two hits carry no test (2/3), a line cell knows no time (classic Hough): both fail in
+#   clutter.
+# * Judge initiators on many random scenes by recall, false tracks, GOSPA and SIAP.
 
 # %% [markdown]
 # ## 11 · Exercises
@@ -870,10 +854,10 @@ if answer is not None:
     check("track_init_hough.2", answer)
 
 # %% [markdown]
-# **Exercise 3 (exploration).** In the Explore panel set 50 clutter points per frame, the paper's
-# procedure (verified off), the 6-neighbourhood and ρ from the image corner. What is the mean
-# number of false tracks per scene over the panel's scenes? Compare it with the chance rate shown
-# there, and then switch the verified initiator on.
+# **Exercise 3 (exploration).** The Explore panel offers 5, 20 and 50 clutter points per frame.
+# Run the paper's procedure (6-neighbourhood, ρ from the corner) on its scenes at 35 per frame,
+# `TH.explore_results(35.0, 6, False, False)`: what is the mean number of false tracks per
+# scene? Compare it with the chance rate and with the verified initiator.
 
 # %%
 answer = None  # your answer here
@@ -881,11 +865,11 @@ if answer is not None:
     check("track_init_hough.3", answer)
 
 # %% [markdown]
-# **Exercise 4 (critique).** The paper's 6-neighbourhood finds track 5 of the nominal scene
-# (seen in frames 2, 3, 4) but loses track 2. Compute the cells $(\lfloor\rho/\delta\rho\rfloor,
-# \lfloor\theta/\delta\theta\rfloor, \lfloor v/\delta v\rfloor)$ of track 5's pairs 2→3 and
-# 3→4 (label 4 in `scene.labels`, ρ from the image corner) and give the number of indices in
-# which they differ.
+# **Exercise 4 (critique).** The paper's 6-neighbourhood loses track 2 of the nominal scene
+# (seen in frames 1, 2, 4). Would finer cells save it? With δρ = 3 px, δθ = 3°, δv = 3 px/s
+# (ρ from the corner), compute the cells $(\lfloor\rho/\delta\rho\rfloor,
+# \lfloor\theta/\delta\theta\rfloor, \lfloor v/\delta v\rfloor)$ of track 2's pairs 1→2 and
+# 2→4 (label 1 in `scene.labels`) and give the number of indices in which they differ.
 
 # %%
 answer = None  # your answer here (a number)
@@ -904,7 +888,14 @@ if answer is not None:
     check("track_init_hough.5", answer)
 
 # %% [markdown]
-# ## 12 · References
+# ## 12 · Closing note
+#
+# **Reviews.** Round 1 (issue 27): 18 findings (3 high, 8 medium, 7 low), 15 fixed or answered,
+# 3 left — the held-out target, the bare procedure, random Table 1. The last two are now in
+# Beyond; the held-out target is still not met (Beyond's table). Round 2: pending.
+
+# %% [markdown]
+# ## 13 · References
 #
 # 1. Xu Z.W., Wang X. Track initiation in electro-optical tracking of space objects. *Acta
 #    Astronomica Sinica* 57(2):211–218, 2016 (CNKI; no DOI printed in our source).

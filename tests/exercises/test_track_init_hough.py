@@ -64,7 +64,7 @@ def _consecutive_only_2():
 
 
 def _right_3():
-    return float(TH.explore_results(50.0, 6, False, False)["false"].mean())
+    return float(TH.explore_results(35.0, 6, False, False)["false"].mean())
 
 
 RIGHT = {
@@ -79,7 +79,7 @@ WRONG = {
     "track_init_hough.1": lambda t1, t2, t3, which: 1.5,  # the evenly spaced middle only
     "track_init_hough.2": lambda: 2 * _right_2(),
     "track_init_hough.3": lambda: _right_3() + 3.0,
-    "track_init_hough.4": lambda: 2.0,  # track 2's count, not track 5's
+    "track_init_hough.4": lambda: 2.0,  # the paper's 5 px × 5° × 3 px/s cells' count
     "track_init_hough.5": lambda: 0.0,  # the 10 px gate's answer (the constraint cannot act)
 }
 
@@ -133,3 +133,13 @@ def test_exercise4_rejects_other_counts(wrong):
 ])
 def test_exercise5_rejects_wrong_fractions(wrong):
     assert not check("track_init_hough.5", wrong)
+
+
+def test_exercise3_rejects_the_panels_levels():
+    """The panel's own levels (its title shows them) are not the answer at 35 per frame."""
+    for lam in (20.0, 50.0):
+        other = float(TH.explore_results(lam, 6, False, False)["false"].mean())
+        if abs(other / _right_3() - 1) > 0.02:
+            assert not check("track_init_hough.3", other)
+    assert not check("track_init_hough.3",
+                     float(TH.explore_results(35.0, 6, False, True)["false"].mean()))

@@ -7,10 +7,11 @@ Expected values are computed with the library on first use; nothing is typed in.
    function of the three frame times);
 2. computation — the §4.6 sum Σ N₁N₂N₃ P₃ over the triplet shapes (every detection counted as
    available) in a seeded clutter-only scene;
-3. exploration — the paper's procedure in the Explore panel: false tracks per scene at 50
-   clutter points per frame (6-neighbourhood, ρ from the image corner);
-4. critique — in how many cell indices track 5's two pairs differ (why the 6-neighbourhood
-   keeps it while it loses track 2);
+3. exploration — the paper's procedure on the Explore panel's scenes at a clutter level the
+   panel does not offer (35 per frame): false tracks per scene (6-neighbourhood, ρ from the
+   image corner);
+4. critique — in how many cell indices track 2's two pairs differ with finer cells
+   (δρ = 3 px, δθ = 3°, δv = 3 px/s): would they save it from the 6-neighbourhood?
 5. critique — the angle constraint at the comparison's 10 px gate.
 """
 
@@ -50,8 +51,13 @@ def _ex2_expected() -> float:
         for a, b, c in TH.triplet_shapes(len(t))))
 
 
+#: the finer cells of exercise 4 (δρ px, δθ degrees, δv px/s)
+EX4_CELLS = (3.0, 3.0, 3.0)
+
+
 def _ex4_expected() -> float:
-    """Indices (ρ, θ, v) in which the cells of track 5's consecutive pairs differ."""
+    """Indices (ρ, θ, v) in which the cells of track 2's pairs (frames 1→2 and 2→4, 1-based)
+    differ with the cells :data:`EX4_CELLS` (ρ from the image corner)."""
     import math
 
     from eotrack.experiments import track_init_hough as TH
@@ -59,15 +65,15 @@ def _ex4_expected() -> float:
 
     cfg = TH.xu_config()
     xs = TH.make_xu_scene(cfg)
-    ini = TH.xu_initiator(cfg)
-    pts = {f: (xs.frames[f][0], xs.frames[f][1][np.flatnonzero(xs.labels[f] == 4)[0]])
-           for f in (1, 2, 3)}
+    d_rho, d_theta, d_v = EX4_CELLS
+    pts = {f: (xs.frames[f][0], xs.frames[f][1][np.flatnonzero(xs.labels[f] == 1)[0]])
+           for f in (0, 1, 3)}
     cells = []
-    for fa, fb in ((1, 2), (2, 3)):
+    for fa, fb in ((0, 1), (1, 3)):
         r, t, v, _ = (float(x[0]) for x in pair_parameters(
             pts[fa][1][None], pts[fb][1][None], pts[fb][0] - pts[fa][0]))
-        cells.append((math.floor(r / ini.d_rho), math.floor(math.degrees(t) / ini.d_theta_deg),
-                      math.floor(v / ini.d_v)))
+        cells.append((math.floor(r / d_rho), math.floor(math.degrees(t) / d_theta),
+                      math.floor(v / d_v)))
     return float(sum(a != b for a, b in zip(*cells)))
 
 
@@ -82,7 +88,7 @@ def _ex5_expected() -> float:
 def _ex3_expected() -> float:
     from eotrack.experiments import track_init_hough as TH
 
-    return float(TH.explore_results(50.0, 6, False, False)["false"].mean())
+    return float(TH.explore_results(35.0, 6, False, False)["false"].mean())
 
 
 register("track_init_hough.1", FunctionAnswer(
@@ -104,20 +110,21 @@ register("track_init_hough.2", NumericAnswer(
          "three frames' times; the sum runs over every (a, b, c) of triplet_shapes(6)"))
 
 register("track_init_hough.3", NumericAnswer(
-    "Exploration. In the Explore panel, set 50 clutter points per frame, the paper's literal "
-    "procedure (verified off), the 6-neighbourhood and ρ from the image corner. What is the mean "
-    "number of false tracks per scene over the panel's scenes?",
+    "Exploration. The Explore panel offers 5, 20 and 50 clutter points per frame. Run the "
+    "paper's literal procedure (6-neighbourhood, ρ from the image corner) on the panel's scenes "
+    "at 35 per frame: explore_results(35.0, 6, False, False). What is the mean number of false "
+    "tracks per scene?",
     expected=_ex3_expected, rtol=1e-2,
-    hint="read it from the left panel's title, or average the 'false' entry of "
-         "explore_results(50.0, 6, False, False)"))
+    hint="explore_results returns per-scene arrays; average its 'false' entry"))
 
 register("track_init_hough.4", NumericAnswer(
     "Critique. On the nominal Xu scene (make_xu_scene(xu_config())) the paper's 6-neighbourhood "
-    "finds track 5 (seen in frames 2, 3 and 4) but loses track 2. Compute the cells "
-    "(⌊ρ/δρ⌋, ⌊θ/δθ⌋, ⌊v/δv⌋) of track 5's pairs frame 2→3 and frame 3→4 (the paper's cells, ρ "
-    "from the image corner) and give the number of the three indices in which they differ.",
+    "loses track 2 (seen in frames 1, 2 and 4). Would finer cells save it? With δρ = 3 px, "
+    "δθ = 3°, δv = 3 px/s (ρ from the image corner), compute the cells (⌊ρ/δρ⌋, ⌊θ/δθ⌋, ⌊v/δv⌋) "
+    "of track 2's pairs frame 1→2 and frame 2→4 and give the number of the three indices in "
+    "which they differ.",
     expected=_ex4_expected, rtol=0.0, atol=0.0,
-    hint="the detections of track 5 are those with label 4; pair_parameters (§2) gives ρ, θ "
+    hint="the detections of track 2 are those with label 1; pair_parameters (§4.1) gives ρ, θ "
          "(radians) and v for a pair and its time difference"))
 
 register("track_init_hough.5", NumericAnswer(
