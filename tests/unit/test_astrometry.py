@@ -274,3 +274,15 @@ def test_property_any_pointing_error_within_the_search_is_recovered(err, roll, s
     # a fit of ~10 stars scatters: 4× its mean error is still < 0.35 px
     assert np.sqrt(np.mean(e ** 2)) < 4.0 * expected_error_arcsec(0.1, 15.0, sol.n_matched)
     assert np.all(sol.residuals_arcsec <= 3.0 * 15.0)
+
+
+@settings(max_examples=25, deadline=None)
+@given(ra=st.floats(0.0, 359.9), dec=st.floats(-85.0, 85.0), roll=st.floats(-3.1, 3.1),
+       f=st.floats(500.0, 50000.0), skew=st.floats(-5.0, 5.0), mirror=st.booleans())
+def test_property_camera_and_wcs_round_trip(ra, dec, roll, f, skew, mirror):
+    K = np.array([[f, skew, 120.0], [0, -f if mirror else f * 1.01, 90.0], [0, 0, 1.0]])
+    R = _rot(2, roll) @ _look(ra, dec)
+    w = wcs_from_camera(K, R, (200, 250))
+    K2, R2 = camera_from_wcs(w)
+    np.testing.assert_allclose(K2, K, rtol=1e-8, atol=1e-6 * f)
+    np.testing.assert_allclose(R2, R, atol=1e-9)

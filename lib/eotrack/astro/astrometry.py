@@ -6,13 +6,24 @@ extract (:mod:`eotrack.astro.catalog`) starting from that believed pointing, and
 World Coordinate System is fitted to the matched pairs with astropy
 (:func:`astropy.wcs.utils.fit_wcs_from_points`), sigma-clipped.
 
-The match (:func:`solve_plate`) is an **offset vote**: for each roll angle of a small grid, every
-(detection, predicted catalogue star) pair closer than the largest pointing error gives a
-candidate shift; the shift shared by the most pairs (counted with a k-d tree, no histogram bins)
-is the pointing error. Chance pairs spread their shifts over the whole search disc, true pairs
-pile up within the centroid noise, so false detections, uncatalogued stars and missing stars
-only raise the background of the vote. The vote's peak must stand clear of that background
-(a Poisson bound), or the frame is refused with :class:`PlateSolveError`.
+:func:`solve_plate` works in three steps, all vectorised (k-d trees, batched linear algebra):
+
+1. **Offset vote.** For each roll angle of a small grid, every (detection, predicted
+   catalogue star) pair closer than the largest pointing error gives a candidate shift; the
+   shift shared by the most pairs (counted with a k-d tree, no histogram bins) is the pointing
+   error. Chance pairs spread their shifts over the whole search disc, true pairs pile up
+   within the centroid noise, so false detections, uncatalogued stars and missed stars only
+   raise the vote's background. The peak must stand clear of that background (a Poisson
+   bound over all pairs and rolls), or the frame is refused.
+2. **Robust start.** The pairs within the match radius after that shift are screened by a
+   least-median-of-squares fit of a *similarity* (scale, rotation, shift — a camera with
+   square pixels) over all pairs of pairs, so that up to half of them may be wrong.
+3. **TAN fit with clipping.** The TAN model (CD matrix and CRPIX, CRVAL at the frame centre)
+   is fitted to the inliers — in closed form in the tangent plane, or with
+   :func:`astropy.wcs.utils.fit_wcs_from_points` (``fitter="astropy"``) — rejected pairs are
+   re-admitted if the fit now accepts them, then the worst pair is dropped while it exceeds
+   ``clip_sigma`` robust σ; every detection is re-matched with the fit and the round repeated
+   until the matched set is stable.
 
 Conventions: pixel coordinates ``(x = column, y = row)``, 0-based with pixel centres at integers
 (astropy's ``origin=0`` and :func:`eotrack.imaging.extract_stars`); RA/Dec in degrees in the
