@@ -210,6 +210,8 @@ def plot_frame(example: dict, *, ax: plt.Axes | None = None) -> plt.Axes:
     ax.text(30, 48, "star drift per frame", color=ON_IMAGE["target"], fontsize=9, va="top",
             bbox={"facecolor": "black", "alpha": 0.6, "lw": 0, "pad": 1.5})
     ax.grid(False)
+    ax.set_xlim(-0.5, img.shape[1] - 0.5)
+    ax.set_ylim(img.shape[0] - 0.5, -0.5)
     b = example.get("burst")
     label_axes(ax, x="x", xunit="px", y="y", yunit="px",
                title="First frame of a burst and what the chain makes of its detections"
@@ -273,7 +275,7 @@ def plot_prediction(prediction: pd.DataFrame, *, ax: plt.Axes | None = None) -> 
     """RMS prediction error through the eclipse per station/object: notebook 01's predictors on
     the catalogue-correlated tracklets beside the orbit fit (linear axis from zero, so bar
     lengths compare)."""
-    ax = _ax(ax, (7.4, 4.2))
+    ax = _ax(ax, (7.4, 4.6))
     title = "Prediction through the eclipse: RMS error per station and object"
     sel = prediction
     if len(prediction) and "series" in prediction.columns:
@@ -293,18 +295,25 @@ def plot_prediction(prediction: pd.DataFrame, *, ax: plt.Axes | None = None) -> 
         st = method_style("cauchy" if m == "orbit" else m)
         ax.bar(x + (i - (len(methods) - 1) / 2) * wd, tab[m].fillna(0.0), wd,
                label=_pred_name(m), **st.bar())
-    ax.set_xticks(x, [f"{s.split()[0]}\n{o}" for s, o in tab.index], fontsize=8)
+    def tick(st: str, o: str) -> str:  # a cluster member's offsets on their own line
+        parts = o.split("+", 1) if "+" in o[5:] else o.split("-", 1)
+        lab = o if len(o) <= 6 or len(parts) < 2 else \
+            parts[0] + "\n" + o[len(parts[0]):]
+        return f"{st.split()[0]}\n{lab}"
+
+    ax.set_xticks(x, [tick(s, o) for s, o in tab.index], fontsize=8)
     ax.set_ylim(0, None)
     ax.grid(axis="x", visible=False)
     label_axes(ax, x="station and object", y="RMS error in umbra", yunit="″", title=title)
-    legend_outside(ax, where="below", ncol=2)
+    legend_outside(ax, where="right")
     return ax
 
 
 def _sweep_title(sweep: pd.DataFrame, level: float) -> str:
     snr = float(sweep.loc["target peak S/N", level]) if level in sweep.columns else np.nan
+    what = sweep.attrs.get("nights", "full nights")
     return (f"sky {level:.0f} e⁻/px: target peak S/N {snr:.1f} "
-            f"(precomputed full nights at {len(sweep.columns)} sky levels)")
+            f"(precomputed {what} at {len(sweep.columns)} sky levels)")
 
 
 def _draw_sweep(sweep: pd.DataFrame, level: float, axes) -> tuple[list, Any]:

@@ -1327,7 +1327,8 @@ def noise_sweep(config: CapstoneConfig | None = None, levels: tuple[float, ...] 
     -------
     pandas.DataFrame
         Rows = budget metrics (``stage · metric``), columns = sky levels, plus the target's
-        peak S/N per level in the row ``"target peak S/N"``.
+        peak S/N per level in the row ``"target peak S/N"``; ``attrs["nights"]`` says which
+        night (the QUICK night, or how many bursts) — the Explore figure's title shows it.
 
     Parameters
     ----------
@@ -1348,4 +1349,8 @@ def noise_sweep(config: CapstoneConfig | None = None, levels: tuple[float, ...] 
                         index=[f"{s} · {m}" for s, m in zip(b["stage"], b["metric"])])
         col["target peak S/N"] = target_peak_snr(c)
         cols[float(lv)] = col
-    return pd.DataFrame(cols)
+    out = pd.DataFrame(cols)
+    n_b = len(make_plan(cfg).bursts)
+    out.attrs["nights"] = ("QUICK nights" if replace(cfg, sky_e=quick_config().sky_e)
+                           == quick_config() else f"nights of {n_b} bursts")
+    return out
