@@ -10,11 +10,9 @@
 # # 04 · Track initiation for electro-optical tracking of space objects: logic, classic Hough and modified Hough
 #
 # **Paper.** Xu Zhanwei, Wang Xin. *Track initiation in electro-optical tracking of space
-# objects* (空间目标光电跟踪中的航迹起始方法). Acta Astronomica Sinica **57**(2):211–218, 2016 [1]
-# (no DOI is printed in our source; the paper is indexed by CNKI), after the modified Hough of
-# Lo et al. [9]. Baselines from the same
-# collection: the logic *n/m* rule [2], the angle-constrained logic of Yuan et al. [3] and the
-# classic Hough transform [4, 5].
+# objects* (空间目标光电跟踪中的航迹起始方法). Acta Astronomica Sinica **57**(2):211–218, 2016 [1],
+# after the modified Hough of Lo et al. [9]. Baselines: the logic *n/m* rule [2], the
+# angle-constrained logic [3], the classic Hough transform [4, 5].
 #
 # **What the paper does.** After star removal a frame still holds *candidates*: moving objects
 # and missed stars. Track *initiation* decides which candidates of different frames are one
@@ -510,12 +508,11 @@ display(Markdown(
     f"{ours_row['false per scene'] / (k_chance * ours_row['chance per scene']):.2f} × chance."))
 
 # %% [markdown]
-# The same runs scored by the tracking community's measures [6, 10, 11]: GOSPA (cut-off
-# $c$ = 10 px, $p$ = 1, per frame from frame 3 on; its *missed* and *false* parts are $c/2$ per
-# missed object or false track, *localisation* the summed distances) and SIAP completeness
-# (share of object-frames covered by a track) and spuriousness (share of track-frames on no
-# object), computed by Stone Soup (`eotrack.tracking.metrics`, cross-checked by hand in its
-# tests).
+# The same runs scored by the community's measures [6, 10, 11], computed by Stone Soup
+# (`eotrack.tracking.metrics`, hand-checked in its tests): GOSPA ($c$ = 10 px, $p$ = 1, per
+# frame from frame 3; *missed* and *false* parts $c/2$ per missed object or false track,
+# *localisation* the summed distances), SIAP completeness (object-frames covered by a track)
+# and spuriousness (track-frames on no object).
 
 # %%
 metrics = TH.summarise_metrics(planted_df)
@@ -618,11 +615,10 @@ explore = panel(draw, tight=False,
 # * **Eq. (8)** read as "+1 per current frame" contradicts the paper's confirmation frames; we
 #   count distinct frames in Q(t) (§4.3). The lost formulas are rebuilt in §4.3 (numbering
 #   uncertain).
-# * **Direction s**: + is along $(\sin\theta, -\cos\theta)$. **Origin of ρ**: not stated;
-#   the image corner.
+# * **Direction s**: + along $(\sin\theta, -\cos\theta)$. **Origin of ρ**: the corner (unstated).
 # * **Constant-velocity check** (ours): a confirmed cell must give one detection per frame on a
-#   constant-velocity track of the cell (pairs in the cell or a 26-neighbour, residual ≤ δρ/2).
-#   Every "modified Hough 3/4 (paper)" row includes it; Beyond runs the bare procedure.
+#   constant-velocity track of the cell (residual ≤ δρ/2). Every "paper" row includes it;
+#   Beyond runs the bare procedure.
 # * **Variants** (26-neighbourhood, verified initiator) cannot make the paper's claim
 #   reproduced.
 # * **Planted yardstick**: the chance rate is our χ² rule's, not that of the paper's cell.
@@ -898,9 +894,9 @@ if answer is not None:
 # ## 13 · References
 #
 # 1. Xu Z.W., Wang X. Track initiation in electro-optical tracking of space objects. *Acta
-#    Astronomica Sinica* 57(2):211–218, 2016 (CNKI; no DOI printed in our source).
+#    Astronomica Sinica* 57(2):211–218, 2016 (CNKI; no DOI printed).
 # 2. Bar-Shalom Y., Willett P.K., Tian X. *Tracking and Data Fusion: A Handbook of Algorithms.*
-#    YBS Publishing, 2011 (track initiation, n/m logic). ISBN 978-0-9648312-7-8.
+#    YBS Publishing, 2011. ISBN 978-0-9648312-7-8.
 # 3. Yuan G., Sheng F. et al. Angle-constrained logic track initiation. *Ship Electronic
 #    Engineering* 30(5), 2010 (CNKI; no DOI).
 # 4. Duda R.O., Hart P.E. Use of the Hough transformation to detect lines and curves in
@@ -915,7 +911,7 @@ if answer is not None:
 # 8. Carlson B.D., Evans E.D., Wilson S.L. Search radar detection and track with the Hough
 #    transform. *IEEE Trans. Aerosp. Electron. Syst.* 30(1):102–108, 1994. doi:10.1109/7.250410
 # 9. Lo T., Leung H., Bridgewater A.W. et al. (modified Hough track initiation), *AGARD
-#    Conference Proceedings* 539:25.1, 1994 — ref. [11] of Xu & Wang, the source of their method.
+#    Conference Proceedings* 539:25.1, 1994 (ref. [11] of Xu & Wang).
 # 10. Rahmathullah A.S., García-Fernández Á.F., Svensson L. Generalized optimal sub-pattern
 #    assignment metric. *Proc. FUSION* 2017. doi:10.23919/ICIF.2017.8009645
 # 11. Votruba P., Nisley R., Rothrock R., Zombro B. *Single Integrated Air Picture (SIAP)
