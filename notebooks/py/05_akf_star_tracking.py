@@ -13,35 +13,30 @@
 # a physical model.* Intelligent Computer and Applications **16**(4):195-202, 2026.
 # [DOI 10.20169/j.issn.2095-2163.26010403](https://doi.org/10.20169/j.issn.2095-2163.26010403)
 #
-# **What the paper does.** A star sensor on a ship must keep a reference star in track while
-# waves roll, pitch and yaw the ship, clouds hide the star and sky or sea light lowers the
-# contrast. The paper combines (1) a physical model of the star's motion on the image (Earth
-# rotation + ship motion), (2) an *adaptive-threshold* star extraction and (3) a
-# *confidence-gated adaptive Kalman filter* (Singer process noise, Sage–Husa noise
-# estimation, three modes: update / update with inflated R / predict only). Its evidence is an
-# ablation of four variants in five scenarios (Tables 1–2, Figs. 6–7).
+# **What the paper does.** A ship's star sensor must keep a reference star in track while waves
+# roll, pitch and yaw the ship, clouds hide the star and sky light lowers the contrast. The
+# paper combines a physical model of the star's image motion, an
+# *adaptive-threshold* extraction and a *confidence-gated adaptive Kalman filter* (Singer
+# process noise, Sage–Husa noise estimation, three modes), and tests them by an ablation of four
+# variants in five scenarios (Tables 1–2, Figs. 6–7).
 #
-# **Our stand-in for the paper's data.** The paper ran on "the first 200 frames of OTB100", a
-# visual-tracking benchmark without stars. We simulate a shipborne star sensor: real
-# Gaia/Hipparcos stars, astropy Alt/Az for every frame, roll/pitch/yaw as sums of sinusoids,
-# Gaussian PSF, shot and read noise, 8-bit frames, with knobs for the five scenarios.
+# **Our data.** The paper used "the first 200 frames of OTB100", a visual-tracking benchmark
+# without stars. We simulate a shipborne star sensor: real Gaia/Hipparcos stars, astropy Alt/Az
+# per frame, sinusoidal roll/pitch/yaw, Gaussian PSF, shot and read noise, 8-bit frames.
 #
 # ## Learning objectives
 # After this notebook you can
-# - chain the rotations level → deck → camera and predict a star's image motion, and spot why
-#   the paper's Earth-rotation term (eq. 12) is wrong;
-# - extract stars with a local threshold, and know what a general extractor needs on real
-#   skies (mesh background, deblending, windowed centroids);
-# - write the Kalman filter's predict/update, the Singer process noise and the Sage–Husa
-#   noise estimator, and see where Sage–Husa breaks;
-# - run and read an ablation honestly: what each module buys, in which scenario, and which
-#   settings were chosen after looking.
+# - chain the rotations level → deck → camera, predict a star's image motion and spot why the
+#   paper's eq. (12) is wrong;
+# - extract stars with a local threshold;
+# - write the Kalman predict/update, the Singer process noise and the Sage–Husa estimator, and
+#   see where Sage–Husa breaks;
+# - read an ablation per scenario, with intervals, under settings fixed before the run.
 #
-# **Prerequisites.** Notebook 02 (star fields, astropy frames); linear algebra and the basics of
-# the Kalman filter (Labbe's book, chapters 4–8, is a friendly start).
+# **Prerequisites.** Notebook 02; the basics of the Kalman filter (Labbe, chapters 4–8).
 #
-# **Scorecard** (computed from `papers_repro/akf_star/scorecard.json`, which `make repro`
-# writes with the configuration this notebook runs again in *Reproduction*):
+# **Scorecard** (computed from `papers_repro/akf_star/scorecard.json`, written by `make repro`
+# from the run this notebook reads in *Reproduction*):
 
 # %%
 import json
@@ -103,9 +98,26 @@ setup_notebook()
 versions(("numpy", "scipy", "opencv-python-headless", "astropy", "filterpy", "sep", "eotrack"))
 
 # %% tags=["parameters"]
-N_SEEDS = A.N_SEEDS   # sequences per scenario: the same as `make repro` (so statuses match)
-N_FRAMES = 200        # the paper's 200 frames
-QUICK = False         # True: 4 seeds × 120 frames, like reproduce(quick=True)
+QUICK = False   # True: a small live study (3 sequences × 100 frames) instead of the stored run
+
+# %% [markdown]
+# **The stored study.** The ablation (100 sequences of 200 frames) and the side studies take
+# about 5 minutes, so `make repro` writes them to `papers_repro/akf_star/ablation_study.npz`,
+# read here. With `QUICK = True`, or without that file, a small live study runs instead
+# (3 sequences × 100 frames per scenario, 1–2 min); its statuses are not the REPORT's.
+
+# %%
+study_file = papers_repro_dir() / A.SLUG / A.STUDY_FILE
+if not QUICK and study_file.exists():
+    study = A.read_study(study_file)
+else:
+    if not QUICK:
+        display(Markdown(f"**`{study_file.name}` is missing** — `python -m eotrack.repro "
+                         "akf_star` (or `make repro`) writes it. Running a small live study."))
+    study = A.run_study(A.small_config(), runner=TrialRunner(progress=False), n_consistency=1,
+                        n_sensitivity=2, n_centroid_frames=20)
+res, session, cfg = study.ablation, study.session, study.ablation.config
+print(f"{study.source}: {cfg.n_seeds} sequences × {cfg.n_frames} frames per scenario")
 
 # %% [markdown]
 # ## Notation
@@ -143,23 +155,21 @@ QUICK = False         # True: 4 seeds × 120 frames, like reproduce(quick=True)
 # \tag{3}
 # $$
 #
-# the text's sequence is $R_{N\to B}=R_y(\varphi)R_x(\theta)R_z(-\psi)$ (heading included).
-# Eq. (2) prints $R_x(\varphi)R_y(\theta)$ — angles swapped and factors reversed; for
-# sea-state angles the difference is second order. The optical axis points at azimuth β and
-# elevation α on the deck, $R_{B\to C}=R_x(\alpha)R_z(-\beta)$. The paper writes
-# $R_{B\to C}=R_y(\beta)R_x(\alpha)$ (azimuth about Y, its optical axis) and prints as its
-# small-angle form the matrix $M$ with rows $(1, 0, \beta)$, $(0, 1, -\alpha)$,
-# $(-\beta, \alpha, 1)$. With the passive matrices of eq. (3), $M$ is the first-order expansion of
-# the TRANSPOSE $[R_y(\beta)R_x(\alpha)]^\top$, not of the product itself (checked below): a
-# sign (active/passive) slip against eq. (3), on top of the azimuth axis. Our product's
-# expansion (the library's form) is
+# the text's sequence is $R_{N\to B}=R_y(\varphi)R_x(\theta)R_z(-\psi)$ (heading included);
+# eq. (2) prints $R_x(\varphi)R_y(\theta)$, a second-order difference at sea-state angles.
+# The optical axis points at azimuth β and elevation α on the deck,
+# $R_{B\to C}=R_x(\alpha)R_z(-\beta)$. The paper writes $R_y(\beta)R_x(\alpha)$ (azimuth
+# about Y, its optical axis) and prints as its small-angle form the matrix $M$ with rows
+# $(1, 0, \beta)$, $(0, 1, -\alpha)$, $(-\beta, \alpha, 1)$ — with the passive matrices of
+# eq. (3), the expansion of the TRANSPOSE $[R_y(\beta)R_x(\alpha)]^\top$, not of the product
+# (checked below). Our product's expansion (the library's form) is
 #
 # $$
 # R_{B\to C}\approx\begin{pmatrix}1&-\beta&0\\\beta&1&\alpha\\0&-\alpha&1\end{pmatrix}
 # \tag{5}
 # $$
 #
-# It differs from $M$ at first order (checked below). The three frames, drawn from the matrices:
+# It differs from $M$ at first order. The three frames, drawn from the matrices:
 
 # %%
 fig = A.plot_frames_schematic()
@@ -222,16 +232,16 @@ assert err < 1e-12
 #
 # With $u=fX/Z$, $v=fY/Z$ (Z the optical axis in eq. 10's convention),
 # $$\dot u=f\,\frac{\dot XZ-X\dot Z}{Z^2},\qquad \dot v=f\,\frac{\dot YZ-Y\dot Z}{Z^2}.\tag{10}$$
-# The image velocity is an Earth-rotation part plus a ship-motion part (eq. 11); for small
-# attitude angles, yaw rate ignored, the paper writes
+# The image velocity is an Earth part plus a ship part (eq. 11); for small attitude angles the
+# paper writes
 # $$\dot u\approx-f\omega_e\sin A\cos h+f(\dot\theta\cos\psi-\dot\varphi\sin\psi),\qquad
 # \dot v\approx-f\omega_e\cos A\cos h+f(-\dot\theta\sin\psi-\dot\varphi\cos\psi),\tag{12}$$
 # and integrates it to the trajectory
 # $$u(t)=u_0+\int_0^t\big(\dot u_{\rm earth}+\dot u_{\rm ship}\big)\,d\tau+\varepsilon(t),
 # \qquad v(t)=v_0+\int_0^t\big(\dot v_{\rm earth}+\dot v_{\rm ship}\big)\,d\tau+\varepsilon(t).
 # \tag{13–14}$$
-# The Earth terms of eq. (12) do not contain the observer's latitude, but a star's diurnal
-# motion does. In azimuth A (from north through east) and altitude h:
+# Its Earth terms lack the observer's latitude, which a star's diurnal motion has. In azimuth A
+# (from north through east) and altitude h:
 # $$\dot h=\omega_e\cos\phi_{\rm lat}\sin A,\qquad
 # \cos h\,\dot A=\omega_e(\sin\phi_{\rm lat}\cos h-\cos\phi_{\rm lat}\sin h\cos A),$$
 # of total angular speed $\omega_e\cos\delta$. First eq. (10) by a finite difference, then both
@@ -308,69 +318,29 @@ print(f"R = (g95 - g5)/255 = {round(ad.dynamic_range, 2)}; adaptive finds the re
       f"{bool(d_ad < 0.5)}; global finds it: {bool(d_gl < 0.5)}")
 
 # %% [markdown]
-# ### Extraction that holds on real skies
-#
-# The paper's procedure is tuned to its 8-bit frames: the local window's mean and std include
-# the star's own light and its neighbours', R assumes 0…255 and touching stars merge into one
-# region. The library's default extractor (`extract_stars(img)`, method `"sky"`) is built for
-# any astronomical frame: background and noise maps from sigma-clipped 64-px meshes
-# (`background_map`); a threshold on the filtered, background-subtracted image over the
-# *local* noise; every local maximum that rises above the saddle to its higher neighbour
-# (`deblend_peaks`); Gaussian-windowed centroids (`windowed_centroids`); fluxes in an aperture,
-# no cap; a threshold (4.5σ) with at most one false detection per 10⁶ px of noise; and
-# sharpness/roundness flags that drop cosmic rays and hot pixels (as DAOFIND and SEP flag
-# them). On a real crowded frame — M13, shipped with astropy — it finds SEP's 40 brightest
-# clean, isolated stars (`benchmarks/bench_extraction.py` compares completeness, centroids and
-# speed with SEP on simulated and real frames):
-
-# %%
-import sep
-
-m13 = real_sky_images()["m13"]
-data = np.ascontiguousarray(m13, dtype=np.float64)
-bkg = sep.Background(data)
-ref = sep.extract(data - bkg, 5.0, err=bkg.rms(), minarea=3)
-ref_xy = np.c_[ref["x"], ref["y"]]
-idx = clean_isolated(ref_xy, ref["flux"], ref["flag"], m13.shape, a=ref["a"], b=ref["b"], n=40)
-sky = extract_stars(m13, return_info=True)
-found, _, offset = match_positions(sky.xy, ref_xy[idx], 1.0)
-paper_way = extract_stars(m13, method="adaptive")
-found_paper, _, _ = match_positions(paper_way.xy, ref_xy[idx], 1.0)
-assert found.mean() >= 0.95
-fig = A.plot_real_sky(m13, sky.xy, reference=ref_xy[idx],
-                title="M13 (astropy test data): sky extractor and SEP's clean isolated stars")
-
-# %%
-# NBVAL_CHECK_OUTPUT
-print(f"SEP's clean isolated stars found within 1 px — sky extractor: {round(found.mean(), 1)}, "
-      f"paper's adaptive method: {round(found_paper.mean(), 1)}")
-
-# %% [markdown]
 # ### The Kalman filter (eqs. 30–40)
 #
-# State $X=[x,y,v_x,v_y,a_x,a_y]^\top$ (eq. 30): Earth rotation is a near-constant velocity,
-# ship sway a varying acceleration, so F is the constant-acceleration transition with the
-# frame period ΔT. Prediction (eqs. 31–32; eq. 31 wrongly adds the noise sample $W_{k-1}$ to
-# the estimate — the noise enters through Q):
+# State $X=[x,y,v_x,v_y,a_x,a_y]^\top$ (eq. 30); F is the constant-acceleration transition
+# with the frame period ΔT. Prediction (eq. 31 wrongly adds the noise sample $W_{k-1}$ to the
+# estimate; the noise enters through Q):
 # $$\hat X_{k|k-1}=F\hat X_{k-1},\qquad P_{k|k-1}=FP_{k-1}F^\top+Q_{k-1}.\tag{31–32}$$
 # **Eq. (33) is inconsistent with eqs. (34)–(35).** It prints $\ddot u_s=-\alpha\dot u_s+w$,
 # a first-order Markov process on the *velocity*; eqs. (34)–(35) give the variance of Singer's
 # process on the *acceleration*, $\dot a=-\alpha a+w(t)$ (an Ornstein–Uhlenbeck process),
 # $$q_a=\sigma_a^2=\frac{\sigma_w^2}{2\alpha}\big(1-e^{-2\alpha\Delta T}\big),\qquad
 # Q\approx\operatorname{diag}(0,0,0,0,q_a,q_a).\tag{34–35}$$
-# **The model the filter runs is neither:** F is the constant-acceleration transition of
-# eq. (30), so the acceleration is a random walk whose per-frame increments have the variance
-# $q_a$ of eq. (34) — Singer's decay $e^{-\alpha\Delta T}$ is not in F. The Monte Carlo below
-# therefore checks eq. (34), not the model the filter runs.
+# **The filter runs neither:** with the constant-acceleration F the acceleration is a random
+# walk whose per-frame increments have the variance $q_a$ of eq. (34); Singer's decay
+# $e^{-\alpha\Delta T}$ is not in F. The Monte Carlo below checks eq. (34) only.
 # Measurement and update:
 # $$Z_k=HX_k+V_k,\ V_k\sim N(0,R_k)\tag{36}$$
 # $$e_k=Z_k-H\hat X_{k|k-1},\tag{37}$$
 # $$\hat X_k=\hat X_{k|k-1}+K_ke_k,\tag{38}$$
 # $$K_k=P_{k|k-1}H^\top\big(HP_{k|k-1}H^\top+R_{k-1}\big)^{-1},\tag{39}$$
 # $$P_k=(I-K_kH)P_{k|k-1}.\tag{40}$$
-# Numbered as printed; eq. (39)'s $R_{k-1}$ is the paper's: the R of the previous Sage–Husa
-# step, which is what an adaptive filter has at hand (for the standard KF, $R_{k-1}=R_k=R$).
-# First $q_a$ of eq. (34) against a Monte Carlo of the OU process over one frame:
+# Numbered as printed; eq. (39)'s $R_{k-1}$ is the previous Sage–Husa step's R (for the
+# standard KF, $R_{k-1}=R$). First $q_a$ of eq. (34) against a Monte Carlo of the OU process
+# over one frame:
 
 # %%
 alpha, sigma_w, dt = 0.7, 4.0, 0.2
@@ -434,10 +404,9 @@ print(kf_checks)
 # $v\perp e_0$, $v^\top R_0v=-v^\top HP_{0|-1}H^\top v<0$ — in 2-D, $R_0$ is NOT positive
 # semi-definite at step 0, whatever the data: indefinite when the first innovation is large
 # ($e_0^\top(HP_{0|-1}H^\top)^{-1}e_0>1$), negative definite when it is small. The cell checks
-# both over noise levels, priors and first measurements near and far from the prediction, then
-# runs 60 steps with and without our safeguard (with the status settings' q_a bounds), which
-# symmetrises R, clips its eigenvalues to `ConfidenceConfig.r_bounds` and projects Q back onto
-# the Singer structure with $q_a$ bounded.
+# both over noise levels, priors and first measurements, then runs 60 steps with and without
+# our safeguard, which clips R's eigenvalues to `ConfidenceConfig.r_bounds` and projects Q
+# back onto the Singer structure with $q_a$ bounded.
 
 # %%
 step0, kind0 = [], []
@@ -499,13 +468,14 @@ print(f"without the safeguard R is not positive definite from step {first_bad}; 
 # the star stays hidden. **$C_{img}$ is not defined by the paper**; ours is
 # $C_{img}=\big(1-e^{-(SNR/8)^2}\big)\exp\!\big(-\ln^2(F/F_{ref})/(2\cdot0.7^2)\big)$ — a
 # faint spot, or one much dimmer (translucent cloud) or brighter (glare, a neighbour) than the
-# designated star's reference flux, is trusted less. One cloud sequence, BEAK-ST:
+# designated star's reference flux, is trusted less. The reproduction's first cloud sequence,
+# BEAK-ST:
 
 # %%
-cfg = A.AblationConfig(n_seeds=4 if QUICK else N_SEEDS, n_frames=120 if QUICK else N_FRAMES)
-seq_c = simulate_sequence(np.random.default_rng(2), "cloud", n_frames=cfg.n_frames)
-tr = A.track_sequence(seq_c, cfg, np.random.default_rng(2))["BEAK-ST"]
-fig = A.plot_confidence_trace(seq_c, tr)
+meas_c = session.measurements("cloud", seed=0)
+tr = A.track_measurements(meas_c, cfg, variants={"BEAK-ST": A.VARIANT_PARTS["BEAK-ST"]})
+tr = tr["BEAK-ST"]
+fig = A.plot_confidence_trace(meas_c, tr)
 
 # %% [markdown]
 # ### Metrics (eqs. 47–50)
@@ -524,7 +494,7 @@ fig = A.plot_confidence_trace(seq_c, tr)
 # ε = 2 px. For the cloud track above:
 
 # %%
-e_c = np.hypot(*(tr.xs[:, :2] - seq_c.truth).T)                     # (47)
+e_c = np.hypot(*(tr.xs[:, :2] - meas_c.truth).T)                     # (47)
 metrics_c = {"E (px)": e_c.mean(), f"P_s (ε = {cfg.epsilon_px:g} px)":
              np.mean(e_c <= cfg.epsilon_px)}                         # (48)-(50)
 pd.Series(metrics_c).to_frame("BEAK-ST, one cloud sequence")
@@ -535,29 +505,36 @@ pd.Series(metrics_c).to_frame("BEAK-ST, one cloud sequence")
 # Four variants: **Baseline** (global threshold + standard KF), **BEAK-ST-GT** (global +
 # confidence AKF), **BEAK-ST-SKF** (adaptive + standard KF), **BEAK-ST** (adaptive +
 # confidence AKF); every filter starts from the designated star (0.3 px error) with the same
-# Singer $q_a$ (sea state 3) and R = 0.25 px². The run below is `make repro`'s configuration.
-# The statuses come from the **status settings**, fixed on 2026-12-01 **with results seen**:
-# git shows no setting of this experiment fixed before a result had been looked at (the
-# table below gives each one's commit). So no status here is a blind test. The experiment's
-# first committed settings (9ea01e8: R ≤ 1 px², q_a ≤ 100×), the settings tuned after
-# inspecting track losses (*Exploratory settings* below), a constant-velocity KF and two
-# re-tuned CA filters (beyond the paper) run on the same sequences. Each claim is decided
-# per scenario on paired sequences, with t intervals Bonferroni-corrected within the claim.
+# Singer $q_a$ (sea state 3) and R = 0.25 px².
+#
+# **A pre-registered confirmatory run.** No setting of this experiment had been fixed before a
+# result was looked at (git shows it), so on 2026-12-02 we froze one set, the *status
+# settings*, with every claim's decision rule in the `[protocol]` table of `claims.toml`,
+# committed it, and only then ran it on root seeds never used before. The earlier readings stay
+# in each claim's history as exploratory. Each claim is decided per scenario on 20 paired
+# sequences, with t intervals Bonferroni-corrected within the claim.
 
 # %%
-res = A.run_ablation(cfg, runner=TrialRunner(progress=False), extras=A.reproduction_extras(cfg))
+protocol = A.read_protocol()
+display(Markdown(
+    f"**Protocol ({protocol['date']}).** γ = {protocol['gamma']:g}, R within "
+    f"{protocol['r_bounds_px2']} px², q_a within {protocol['q_bounds_ratio']}× its prior, gate "
+    f"cap {protocol['gate_cap']}, hold {protocol['hold_after']}; "
+    f"{protocol['n_sequences_per_scenario']} sequences × {protocol['n_frames']} frames per "
+    f"scenario; root seeds: {protocol['root_seeds']}. This run: k = 0, root seed "
+    f"{cfg.seed} (= `A.protocol_seeds(0)`: {cfg.seed == A.protocol_seeds(0)[0]})."))
 meas = A.claim_measurements(res)
 claims = load_claims("akf_star")
 rows = A.claim_results(res)
 card = scorecard(rows)
 provenance, status_by_settings, ca_tuned = A.settings_tables(res)
-display(Markdown(A.report_text(cfg)))
 provenance
 
 # %% [markdown]
-# Because every settings set was chosen with some results in view, we run the claims'
-# evaluators under each of them on the same sequences. Only the first column is the status;
-# a claim whose status changes across the columns depends on a choice made after looking.
+# The table gives where each frozen setting came from. The first committed settings
+# (9ea01e8: R ≤ 1 px², q_a ≤ 100×) and the settings tuned after inspecting track losses
+# (*Exploratory settings* below) ran on the same new sequences; their statuses are
+# exploratory comparisons — only the first column decides:
 
 # %%
 status_by_settings
@@ -565,16 +542,7 @@ status_by_settings
 # %%
 # NBVAL_CHECK_OUTPUT
 depends = [c for c in status_by_settings.index if status_by_settings.loc[c].nunique() > 1]
-print("statuses that depend on the settings set:", depends)
-
-# %%
-same = [c for c in status_by_settings.index if c not in depends]
-display(Markdown(
-    f"**What this means for the verdicts.** {len(depends)} of {len(status_by_settings)} "
-    "statuses change with a choice of settings made after looking; only "
-    f"{', '.join(same) or 'none'} {'is' if len(same) == 1 else 'are'} the same under all "
-    f"{status_by_settings.shape[1]} sets. The other statuses are reported as decided by the "
-    "status settings, but they are not blind tests: read each with its column here."))
+print("statuses that would change under another settings set:", depends)
 
 # %% [markdown]
 # ### Table 1 — mean tracking error
@@ -612,9 +580,8 @@ pd.concat({"continuity": res.continuity(), "median error (px)": res.median_error
 # %% [markdown]
 # ### Fig. 6 — mean tracking error over the frames
 #
-# One panel per scenario, as the claim is decided. Where the global threshold loses the star,
-# Baseline and BEAK-ST-GT produce the same curve: Baseline is drawn wide and dashed
-# underneath, BEAK-ST-GT dotted on top.
+# One panel per scenario, as the claim is decided (Baseline wide and dashed under BEAK-ST-GT,
+# which often has the same curve).
 
 # %%
 fig = A.plot_curves_by_scenario(res, "error")
@@ -638,25 +605,40 @@ print(statuses)
 print("summary:", {s.value: int(sum(r.status is s for r in rows)) for s in Status})
 
 # %%
-same_as_report = (not QUICK and N_SEEDS == A.N_SEEDS and N_FRAMES == 200)
+same_as_report = not QUICK and study.source.startswith("stored")
 if same_as_report:
     stored_status = {c["claim"]: c["status"] for c in stored["claims"]}
     assert stored_status == statuses, (stored_status, statuses)
 
 # %% [markdown]
-# **Reading** (computed below from the tables above). The adaptive threshold is the module
-# that matters: where the global μ + kσ threshold, inflated by a gradient or glare, loses the
-# star, the adaptive variants keep it. The confidence AKF, with the status settings, does not
-# buy robustness: it loses the star in rough seas and under clouds more often than a standard
-# KF on the same centroids. The tuned (exploratory) settings repair much of this, but they
-# were chosen after seeing these failures and cannot make a claim reproduced. A lost track's
-# estimate drifts without bound, so the means of Table 1 mix tracking error with **drift
-# distance** on a 128-px-wide frame (values far above 128 px); read them beside the median
-# error and the lost-track fraction.
+# **Stability.** The protocol's runs k = 1…5 (`--seeds 5`: new sequences, same settings and
+# rules) give each claim a status of its own; a claim whose status differs on any of them is
+# *fragile*:
 
 # %%
-E, Ex = res.mean_error(), res.extra["exploratory"].mean_error()
-lost = res.lost_fraction()
+stab = json.loads((papers_repro_dir() / "akf_star" / "stability.json").read_text())
+stab_tab = pd.DataFrame({"committed run (k = 0)": statuses}
+                        | {f"k = {k}": {c: v[i] for c, v in stab["statuses"].items()}
+                           for i, k in enumerate(stab["seeds"])})
+stab_tab["same status on k = 1…5"] = [
+    f"{sum(s == statuses[c] for s in stab['statuses'][c])}/{len(stab['seeds'])}"
+    for c in stab_tab.index]
+display(Markdown(f"Stability run of {stab['date']}, full counts: {not stab['quick']}."))
+stab_tab
+
+# %% [markdown]
+# **Reading** (numbers below). Where the global μ + kσ threshold, inflated by a gradient or
+# glare, loses the star, the adaptive variants keep it. The confidence AKF with the status
+# settings loses the star in rough seas and under clouds more often than a standard KF on the
+# same centroids; the tuned (exploratory) settings repair much of this, but were chosen after
+# seeing such failures. A lost track drifts without bound, so the means of Table 1 mix tracking
+# error with **drift distance** on a 128-px frame: read them beside the median error and the
+# lost tracks.
+
+# %%
+E, Ex, lost = res.mean_error(), res.extra["exploratory"].mean_error(), res.lost_fraction()
+lost_kf = (lost["BEAK-ST"] > lost["BEAK-ST-SKF"]).loc[["ship sway", "cloud occlusion"]]
+assert lost_kf.all()                  # what the reading says, on the confirmatory run
 lines = [f"- **{sc}**: lowest mean error {E.loc[sc].idxmin()} ({E.loc[sc].min():.2f} px); "
          f"BEAK-ST {E.loc[sc, 'BEAK-ST']:.2f} px (lost {100 * lost.loc[sc, 'BEAK-ST']:.0f} % of "
          f"tracks), exploratory BEAK-ST {Ex.loc[sc, 'BEAK-ST']:.2f} px; paper's BEAK-ST "
@@ -667,60 +649,22 @@ lines.append(f"- means above the frame width (128 px, i.e. drift of lost tracks)
 display(Markdown("\n".join(lines)))
 
 # %% [markdown]
-# ### Constant-velocity and re-tuned constant-acceleration filters (beyond the paper)
-#
-# The same adaptive centroids through a plain constant-velocity KF (white-acceleration density
-# q = 400 px²/s³) and through the standard CA filter with its process noise ×100 or with R set
-# to about the centroids' own variance (4·10⁻⁴ px², 0.02 px rms; *Beyond*, centroid accuracy):
-
-# %%
-cv = res.extra["CV baseline"].mean_error()["CV KF"]
-tuned_cols = [c for c in ca_tuned.columns if c.startswith("CA KF, ")]
-tab = ca_tuned.assign(**{"BEAK-ST": E["BEAK-ST"], "BEAK-ST (exploratory)": Ex["BEAK-ST"]})
-display(tab.round(3))
-sway = "ship sway"
-best_ca = ca_tuned.loc[sway, tuned_cols].min()
-singer = ca_tuned.loc[sway, "CA KF (Singer Q, R = 0.25 px²)"]
-# the lever is Q/R: a re-tuned CA filter matches or beats the CV one under sway ...
-assert best_ca <= 1.1 * cv[sway] and singer > 3 * best_ca
-worst = ca_tuned[tuned_cols].max(axis=1)
-display(Markdown(
-    f"Under sway the CA filter with the Singer prior errs by {singer:.2f} px, the CV filter by "
-    f"{cv[sway]:.3f} px — and the CA filter re-tuned (larger Q or the true R) by "
-    f"{best_ca:.3f} px. So the sway error is **lag from the noise setting** (Q too small "
-    f"for the sway, R = {cfg.r_px2:g} px² ≈ {cfg.r_px2 / A.CA_TRUE_R_PX2:.0f}× the centroids' "
-    "variance), not constant acceleration "
-    "versus constant velocity. The same re-tuning fails elsewhere: its worst mean error is "
-    f"{worst.max():.0f} px ({worst.idxmax()}), where the Singer prior gives "
-    f"{ca_tuned.loc[worst.idxmax(), 'CA KF (Singer Q, R = 0.25 px²)']:.2f} px — no single "
-    "fixed Q/R suits every scenario, which is the problem an adaptive filter should solve "
-    "and, here, does not."))
-
-# %% [markdown]
 # ## Explore
 #
-# The confidence filter's trade-off: how much it trusts a measurement that disagrees with its
-# prediction (γ, η, λ) against how fast it adapts its noise (b), under occlusions of growing
-# length. Single sequences, not the Monte Carlo — the first sequences of each scenario that
-# *Reproduction* simulated, whose centroids the ablation kept:
-#
-# - **scenario, seed** pick one of those sequences (seed k = the ablation's k-th sequence);
-#   its centroids and its standard-KF errors come from the ablation as they are;
-# - **occlusion** (cloud scenario only): the clouds dim every star and brighten the sky, so
-#   they change the images and what the extractor finds — not just which measurements are
-#   missing. A different length is therefore a new simulation (same ship motion, noise and
-#   cloud shapes, clouds moving at another speed), done once below for the seeds offered;
-# - **b, λ, γ, η** re-run only the confidence filter (BEAK-ST) on the stored centroids.
+# How much the confidence filter trusts a measurement that disagrees with its prediction
+# (γ, η, λ) against how fast it adapts its noise (b), on single sequences: the first three of
+# each scenario in *Reproduction*. **Occlusion** (cloud only): a 25-frame occlusion is a new
+# simulation (same ship motion, noise and cloud shapes, slower clouds), stored with the study;
+# **b, λ, γ, η** re-run only BEAK-ST on the stored centroids.
 
 # %%
 from dataclasses import replace
 
-EXPLORE_SEEDS = (0, 1, 2)     # the reproduction's first three sequences of each scenario
-OCCLUSIONS = (10, 25)         # 10: the reproduction's cloud preset; 25: simulated here
-session = A.ExploreSession(ablation=res)
-n_new = session.precompute(seeds=EXPLORE_SEEDS, occlusions=OCCLUSIONS)
+EXPLORE_SEEDS, OCCLUSIONS = A.EXPLORE_SEEDS, A.EXPLORE_OCCLUSIONS   # (0, 1, 2), (10, 25)
+n_before = session.n_simulated
+assert session.precompute(seeds=EXPLORE_SEEDS, occlusions=OCCLUSIONS) == 0   # all stored
 SHOWN = ("Baseline", "BEAK-ST-SKF", "BEAK-ST")   # BEAK-ST-GT left out (often = Baseline)
-# the panel's sequences are the reproduction's: BEAK-ST at the default settings gives its errors
+# the panel's sequences are the reproduction's: BEAK-ST re-run by this code gives its errors
 same = session.errors("cloud", seed=0, variants=("BEAK-ST",))["BEAK-ST"]
 stored_errors = res.errors[res.scenarios.index("cloud"), 0, A.VARIANTS.index("BEAK-ST")]
 assert np.allclose(same, stored_errors, atol=1e-4)   # stored as float32
@@ -734,8 +678,8 @@ def draw(scenario_name, seed, occlusion_frames, b, lam, gamma, eta):
            else "no clouds")
     # the filter's setting in the title: a move that changes no estimate still shows
     return A.plot_explore_errors(
-        errs, f"{A.SCENARIO_LABELS.get(scenario_name, scenario_name)}, reproduction sequence "
-        f"{seed}, {occ} — one sequence, not the Monte Carlo\nconfidence filter: b = {b:.3f}, "
+        errs, f"{A.SCENARIO_LABELS.get(scenario_name, scenario_name)}, sequence {seed}, {occ} "
+        f"(one sequence, not the Monte Carlo)\nconfidence filter: b = {b:.3f}, "
         f"λ = {lam:.0f}, γ = {gamma:.1f}, η = {eta:.1f}", gate_px=cfg.gate_px)
 
 
@@ -758,7 +702,7 @@ lost = pd.DataFrame({f"{occ}-frame occlusions": {
     v: sum(session.errors("cloud", seed=s, occlusion_frames=occ, variants=(v,))[v][-1]
            > cfg.gate_px for s in EXPLORE_SEEDS) for v in SHOWN} for occ in OCCLUSIONS})
 lost.index.name = f"tracks lost (of {len(EXPLORE_SEEDS)} sequences)"
-assert session.n_simulated == n_new   # the panel and this table simulated nothing more
+assert session.n_simulated == n_before   # the panel and this table simulated nothing
 lost
 
 # %% [markdown]
@@ -766,21 +710,20 @@ lost
 #
 # | where | paper | adopted |
 # |---|---|---|
-# | eq. (2) | $R_x(\varphi)R_y(\theta)$ | $R_y(\varphi)R_x(\theta)$ (the text's pitch-then-roll; second-order difference) |
-# | eq. (5) | $R_y(\beta)R_x(\alpha)$: azimuth about Y (the optical axis); the printed small-angle matrix expands $[R_y(\beta)R_x(\alpha)]^\top$ — a sign (active/passive) slip against eq. (3) | azimuth about the vertical: $R_x(\alpha)R_z(-\beta)$, small-angle form as shown above (eq. 5) |
-# | eq. (10) | Z as the optical axis | Y′ is the optical axis (Fig. 3); eq. (10) checked in its own convention |
-# | eq. (12) | Earth term without latitude | the diurnal rates (errors in the next cell) |
-# | eqs. (21)–(22) | σ_f called a variance; $T_f\ge I_f$ | standard deviation; $I_f\ge T_f$ |
-# | eq. (18) | R divided by 255 | for data that are not 8-bit: quantiles of the values over the data's range |
-# | eqs. (28)–(29) | weights I over the thresholded region | weights $I-B$; region grown by 2 px (the library default; the paper's region biases centroids — see *Beyond*) |
-# | §1.3 | — | no cap on the number of detections |
-# | eq. (31) | adds the noise sample to the prediction | the mean is predicted; noise enters through Q |
-# | eq. (33) | $\ddot u_s=-\alpha\dot u_s+w$: Markov process on the velocity, inconsistent with eqs. (34)–(35) | the filter runs constant acceleration (random-walk a) with Q of eqs. (34)–(35); neither eq. (33) nor Singer's decaying a |
-# | eq. (41) | $d_k = 1-b/1-b^k$ | $d_k=(1-b)/(1-b^{k+1})$; safeguard on R and Q |
+# | eq. (2) | $R_x(\varphi)R_y(\theta)$ | $R_y(\varphi)R_x(\theta)$, the text's pitch then roll (second-order difference) |
+# | eq. (5) | $R_y(\beta)R_x(\alpha)$, azimuth about the optical axis; the printed matrix expands $[R_y(\beta)R_x(\alpha)]^\top$ | $R_x(\alpha)R_z(-\beta)$, small-angle form above |
+# | eq. (10) | Z the optical axis | Y′ (Fig. 3); eq. (10) checked as printed |
+# | eq. (12) | Earth term without latitude | the diurnal rates (next cell) |
+# | eqs. (21)–(22) | σ_f a "variance"; $T_f\ge I_f$ | standard deviation; $I_f\ge T_f$ |
+# | eq. (18) | R divided by 255 | other data: quantiles over the data's range |
+# | eqs. (28)–(29) | weights I over the thresholded region | weights $I-B$, region grown by 2 px (*Beyond*) |
+# | eq. (31) | noise sample added to the prediction | mean predicted; noise through Q |
+# | eq. (33) | $\ddot u_s=-\alpha\dot u_s+w$, inconsistent with eqs. (34)–(35) | constant acceleration (random-walk a) with the Q of eqs. (34)–(35) |
+# | eq. (41) | $d_k = 1-b/1-b^k$ | $d_k=(1-b)/(1-b^{k+1})$; R and Q bounded |
 # | eq. (42) | $C_{img}$ undefined | SNR × flux consistency |
-# | eq. (46) | "Q increased" during occlusion, no law | Q × (1 + 0.5 n_missed), at most × 20 |
-# | §2 | OTB100 frames; ε, ω, η, γ, λ, b, k, k_b, r, σ_b not given | simulated ship sequences; ε = 2 px, ω = 0.5, η = 1, γ = 3 (status settings; 5 exploratory), λ = 10, b = 0.97, k = 4, k_b = 3, r = 7, σ_b = 6 px |
-# | abstract | 40 % lower error, continuity > 95 % | Table 1 gives a larger reduction (exercise 5); continuity = "estimate within the gate" |
+# | eq. (46) | "Q increased" in occlusion, no law | Q × (1 + 0.5 n_missed), at most × 20 |
+# | §2 | OTB100; ε, ω, η, γ, λ, b, k, k_b, r, σ_b not given | simulated sequences; values in `AblationConfig`, `ConfidenceConfig`, `ExtractionConfig` |
+# | abstract | 40 % lower error, continuity > 95 % | Table 1 gives more (exercise 5); continuity = estimate within the gate |
 
 # %%
 display(Markdown(
@@ -793,80 +736,135 @@ display(Markdown(
     f"its own size, not by a few per cent."))
 
 # %% [markdown]
-# **Exploratory settings — chosen after looking at track losses.** They never set a status.
-# The status settings were themselves restored on 2026-12-01 with these results in view, so
-# neither set is blind (commits in *Reproduction*); the scenario presets, also chosen after
-# looking, enter every status.
+# **Exploratory settings**, chosen after looking at track losses on the earlier seeds; they run
+# on the protocol's sequences beside the status settings and never decide a status. The
+# scenario presets were also set with results in view; they are part of the frozen protocol.
 #
-# | setting (exploratory) | value | what was seen with the alternative |
+# | setting | value | what was seen with the alternative |
 # |---|---|---|
-# | Mahalanobis tolerance γ | 5 (χ² 99 % would be 3) | γ = 3 lost the star in rough-sea sequences (table in *Beyond*) |
-# | Sage–Husa R upper bound | 1 px² | at 25 px² R absorbed the sway lag and BEAK-ST diverged |
-# | Sage–Husa $q_a$ range | [1, 16] × the sea-state prior | a lower floor made the filter over-confident before sway peaks; a higher ceiling threw estimates away at low SNR |
-# | association gate cap | 30 px | at 60 px a coasting track grabbed a neighbour star |
-# | hold after 5 missed frames | velocity and acceleration zeroed | without it the CA extrapolation ran away (all variants) |
-# | scenario presets | `Scenario` fields | set so each scenario stresses its module; the cloud preset's occlusion length (10 frames) is one point of a trade-off against lost tracks (counted for 10 and 25 frames in *Explore*) |
+# | γ | 5 | γ = 3 lost the star in rough seas (*Beyond*) |
+# | R upper bound | 1 px² | at 25 px² BEAK-ST diverged under sway |
+# | $q_a$ range | [1, 16] × prior | over-confident before sway peaks; estimates dropped at low SNR |
+# | gate cap | 30 px | at 60 px a coasting track took a neighbour |
+# | hold after 5 missed frames | v, a zeroed | the CA extrapolation ran away |
 
 # %% [markdown]
 # ## Beyond the paper
 #
-# **A constant-velocity KF and filter consistency.** On two NEW sequences per scenario (sway,
-# cloud, low SNR; simulation seeds 100 and 101 — not the ablation's, so the means differ from
-# Table 1's) with adaptive extraction we compare the standard CA filter, a CV filter and
-# BEAK-ST. NEES uses
-# the position block of P against the true position, NIS the innovations; both have mean 2
-# for a consistent filter (2 degrees of freedom; Bar-Shalom et al. 2001, §5.4): far above 2
-# is over-confident, far below over-cautious.
+# **Centroid accuracy.** Eqs. (28)–(29) weight only the pixels above the local threshold, so
+# the PSF wings are cut and the centroid is pulled towards the brightest pixel ("pixel
+# locking"). Growing each region by two pixels (the library default) removes most of the bias,
+# as does the sky extractor's windowed centroid (nominal sequence, 60 frames):
 
 # %%
-A.consistency_table(cfg)
+centroids = study.tables["centroid_bias"]
+centroids.round(4)
+
+# %% [markdown]
+# **Constant-velocity and re-tuned constant-acceleration filters.** The ablation's adaptive
+# centroids, on the protocol's sequences, through a plain constant-velocity KF
+# (white-acceleration density q = 400 px²/s³) and through the standard CA filter with its
+# process noise ×100 or with a small R:
+
+# %%
+E, Ex = res.mean_error(), res.extra["exploratory"].mean_error()
+grown = centroids.loc["grown region (grow 2, default)"]
+display(Markdown(
+    f"The small R is a setting, R = {A.CA_TRUE_R_PX2:g} px² "
+    f"({np.sqrt(A.CA_TRUE_R_PX2):.2f} px per axis), of the order of the adaptive centroids' "
+    f"error measured above (median {grown['median error (px)']:.3f} px, 90th percentile "
+    f"{grown['90th percentile (px)']:.3f} px); the status filters use R = {cfg.r_px2:g} px²."))
+cv = res.extra["CV baseline"].mean_error()["CV KF"]
+tuned_cols = [c for c in ca_tuned.columns if c.startswith("CA KF, ")]
+tab = ca_tuned.assign(**{"BEAK-ST": E["BEAK-ST"], "BEAK-ST (exploratory)": Ex["BEAK-ST"]})
+display(tab.round(3))
+sway = "ship sway"
+best_ca = ca_tuned.loc[sway, tuned_cols].min()
+singer = ca_tuned.loc[sway, "CA KF (Singer Q, R = 0.25 px²)"]
+# the lever is Q/R: a re-tuned CA filter matches or beats the CV one under sway ...
+assert best_ca <= 1.1 * cv[sway] and singer > 3 * best_ca
+worst = ca_tuned[tuned_cols].max(axis=1)
+w = worst.idxmax()
+display(Markdown(
+    f"Under sway the CA filter with the Singer prior errs by {singer:.2f} px, the CV filter by "
+    f"{cv[sway]:.3f} px and the re-tuned CA filter by {best_ca:.3f} px: the sway error is "
+    "**lag from the noise setting** (Q too small for the sway, R large), not constant "
+    "acceleration against constant velocity. The same re-tuning fails elsewhere: its worst "
+    f"mean error is {worst.max():.0f} px ({w}), where the Singer prior gives "
+    f"{ca_tuned.loc[w, 'CA KF (Singer Q, R = 0.25 px²)']:.2f} px and BEAK-ST "
+    f"{E.loc[w, 'BEAK-ST']:.2f} px — but BEAK-ST errs by {E.loc[sway, 'BEAK-ST']:.0f} px under "
+    "sway. No single fixed Q/R suits every scenario, and the confidence filter with the status "
+    "settings does not fix that either."))
+
+# %% [markdown]
+# **Filter consistency.** On two other sequences per scenario (simulation seeds 100 and 101),
+# the CA filter, a CV filter and BEAK-ST. NEES uses the position block of P against the true
+# position, NIS the innovations; both have mean 2 for a consistent filter (2 degrees of
+# freedom; Bar-Shalom et al. 2001, §5.4): far above 2 is over-confident, far below
+# over-cautious.
+
+# %%
+study.tables["consistency"].round(3)
 
 # %% [markdown]
 # **Sensitivity of BEAK-ST in a rough sea (exploratory).** Sea state 5, six sequences; "lost"
-# is the fraction of sequences whose final estimate is more than the gate from the star; every
-# row uses the tuned bounds on R and q_a. This study is what led to γ = 5 — it is exploratory
-# evidence, not a test.
+# is the share of sequences whose final estimate is farther than the gate from the star; every
+# row uses the tuned bounds on R and q_a. This study led to γ = 5: exploratory evidence only.
 
 # %%
-A.sensitivity_table(cfg)
+study.tables["sensitivity"].round(3)
 
 # %% [markdown]
-# **Centroid accuracy.** Eqs. (28)–(29) weight only the pixels above the local threshold, so the
-# PSF wings are cut and the centroid is pulled towards the brightest pixel ("pixel locking").
-# Growing each region by two pixels (the library default now) removes most of the bias; the
-# sky extractor's windowed centroid is the accurate general choice:
+# **Extraction on real skies.** The paper's procedure suits 8-bit frames (R assumes 0…255,
+# touching stars merge). The library's default extractor (`extract_stars(img)`, method `"sky"`) uses background and
+# noise maps from sigma-clipped 64-px meshes, a threshold over the *local* noise set for at most
+# one false detection per 10⁶ px of noise, deblending at saddles, Gaussian-windowed centroids
+# and sharpness/roundness flags against cosmic rays and hot pixels (as DAOFIND and SEP).
+# On M13 (astropy's test data) it finds SEP's 40 brightest clean, isolated stars;
+# `benchmarks/bench_extraction.py` compares it with SEP (closing note):
 
 # %%
-A.centroid_bias_table()
+import sep
+
+m13 = real_sky_images()["m13"]
+data = np.ascontiguousarray(m13, dtype=np.float64)
+bkg = sep.Background(data)
+ref = sep.extract(data - bkg, 5.0, err=bkg.rms(), minarea=3)
+ref_xy = np.c_[ref["x"], ref["y"]]
+idx = clean_isolated(ref_xy, ref["flux"], ref["flag"], m13.shape, a=ref["a"], b=ref["b"], n=40)
+sky = extract_stars(m13, return_info=True)
+found, _, offset = match_positions(sky.xy, ref_xy[idx], 1.0)
+paper_way = extract_stars(m13, method="adaptive")
+found_paper, _, _ = match_positions(paper_way.xy, ref_xy[idx], 1.0)
+assert found.mean() >= 0.95
+fig = A.plot_real_sky(m13, sky.xy, reference=ref_xy[idx],
+                title="M13 (astropy test data): sky extractor and SEP's clean isolated stars")
+
+# %%
+# NBVAL_CHECK_OUTPUT
+print(f"SEP's clean isolated stars found within 1 px — sky extractor: {round(found.mean(), 1)}, "
+      f"paper's adaptive method: {round(found_paper.mean(), 1)}")
 
 # %% [markdown]
-# **Recommendation.** For a star sensor, use a local-background extractor with accurate
-# centroids and a plain Kalman filter whose Q and R are set to the centroid noise and the
-# sway (under sway a CA filter with a larger Q or the true R does as well as a
-# constant-velocity one, or better; the Singer-prior CA filter lags), with track maintenance
-# for occlusions — the same re-tuning diverges under clouds and at low SNR, so check Q/R per
-# condition. Our runs do not show the confidence gating paying off; if you use Sage–Husa,
-# bound it — unbounded, its first step is not even positive semi-definite. The batched filter (`kalman_filter_batch`)
-# runs many such filters at once with independent dropouts.
+# **Recommendation.** A local-background extractor with accurate centroids, a Kalman filter
+# whose Q and R match the centroid noise and the sway (checked per condition: the re-tuning
+# that fixes sway diverges at low SNR), track maintenance for occlusions, and a bounded
+# Sage–Husa if any. `kalman_filter_batch` runs many filters at once.
 
 # %% [markdown]
 # ## Key points
 #
 # - A star's image motion is Earth rotation plus ship motion; the Earth part depends on the
 #   observer's latitude, which the paper's eq. (12) drops.
-# - A threshold must be local: global μ + kσ fails under gradients and glare. On real skies a
-#   local *noise* (from clipped meshes), deblending and windowed centroids matter as much.
-# - The Kalman update (eqs. 36–40) is a few lines; the modelling lives in F, Q and R.
-# - Sage–Husa with $d_0=1$ starts from $ee^\top-HPH^\top$, never positive semi-definite in 2-D
-#   at step 0 (indefinite or negative definite): bound it.
-# - Tune Q and R to the centroid noise and the sway: the sway error of the CA filters is lag
-#   from a small Q and a large R, and a re-tuned CA filter matches a constant-velocity one.
-# - Confidence gating did not buy robustness here: with the status settings it loses the star
-#   in rough seas and under clouds more often than a standard KF; a 25-frame occlusion
-#   defeats most runs (*Explore*: 3 sequences per variant).
-# - An ablation is only as strong as its settings: fix them before the run (we did not — every
-#   set here was chosen with results in view), decide per scenario with intervals, and show
-#   whether a status changes with the settings.
+# - A threshold must be local: a global μ + kσ fails under gradients and glare.
+# - The Kalman update is a few lines; the modelling lives in F, Q and R. The sway error of the
+#   CA filters is lag from a small Q and a large R.
+# - Sage–Husa with $d_0=1$ starts from $ee^\top-HPH^\top$, never positive semi-definite in
+#   2-D: bound it.
+# - With the frozen settings the confidence gating lost the star under sway and clouds more
+#   often than a standard KF on the same centroids.
+# - A status is a test only if settings and rule were fixed before the data (here: frozen in
+#   `claims.toml`, run on new seeds).
 
 # %% [markdown]
 # ## Exercises
@@ -909,8 +907,9 @@ if answer is not None:
 
 # %% [markdown]
 # **4 (exploration).** In *Explore*: cloud scenario, seed 0, 25-frame occlusion, the session's
-# default filter settings (the status settings, γ = 3 — not the tuned ones). What is BEAK-ST's mean error over the 200 frames (px)? (`session.errors(...)` reads
-# it exactly.) Then move γ and λ: can you keep the star?
+# default filter settings (the status settings, γ = 3 — not the tuned ones). What is BEAK-ST's
+# mean error over the 200 frames (px)? (`session.errors(...)` reads it exactly.) Then move γ
+# and λ: which settings lose the star?
 
 # %%
 answer = None

@@ -175,6 +175,17 @@ class ExploreSession:
                     self._standard(key)
         return self.n_simulated - before
 
+    def add_measurements(self, scenario_name: str, seed: int, occlusion_frames: int,
+                         meas: SequenceMeasurements) -> None:
+        """Use stored measurements (e.g. read from the committed run's file) for one sequence
+        at the configuration's extraction thresholds; a sequence already held is kept."""
+        if not isinstance(meas, SequenceMeasurements):
+            raise TypeError(f"meas must be SequenceMeasurements, got {type(meas).__name__}")
+        if len(meas.truth) != self.n_frames:
+            raise ValueError(f"meas has {len(meas.truth)} frames, the session {self.n_frames}")
+        key = self._key(scenario_name, seed, occlusion_frames, None, None)
+        self._fixed.setdefault(key, meas)
+
     def measurements(self, scenario_name: str, seed: int = 0, occlusion_frames: int = 10
                      ) -> SequenceMeasurements:
         """The (cached) measurements of one sequence."""

@@ -80,7 +80,7 @@ def plot_curves_by_scenario(res: AblationResult, kind: str = "error", axes: Any 
         # two rows of three at book width: legible ticks and legend (one cell holds the legend)
         ncol = min(n, 3)
         nrow = -(-(n + 1) // ncol) if n > 1 else 1
-        fig, grid = plt.subplots(nrow, ncol, figsize=(3.3 * ncol, 2.9 * nrow + 0.6),
+        fig, grid = plt.subplots(nrow, ncol, figsize=(2.6 * ncol, 2.5 * nrow + 0.6),
                                  sharex=True, sharey=True, squeeze=False)
         fig.subplots_adjust(wspace=0.3, hspace=0.4, top=0.88, bottom=0.1, left=0.08, right=0.98)
         grid = grid.ravel()
@@ -98,25 +98,26 @@ def plot_curves_by_scenario(res: AblationResult, kind: str = "error", axes: Any 
             ax.set_yscale("log")
         else:
             ax.set_ylim(-0.02, 1.02)
-        ax.set_title(SCENARIO_LABELS.get(sc, sc), fontsize=11)
-        ax.tick_params(labelsize=10, labelbottom=True, labelleft=True)
-        ax.set_xlabel("frame", fontsize=10)
+        ax.set_title(SCENARIO_LABELS.get(sc, sc), fontsize=10)
+        ax.tick_params(labelsize=9, labelbottom=True, labelleft=True)
+        ax.set_xlabel("frame", fontsize=9)
     ylabel = ("mean tracking error (px)" if kind == "error"
               else f"success rate (e ≤ {res.config.epsilon_px:g} px)")
-    ncols = axes[0].get_gridspec().ncols if axes[0].get_subplotspec() is not None else 1
-    for i, ax in enumerate(axes):
-        if i % ncols == 0:
-            ax.set_ylabel(ylabel, fontsize=10)
+    for ax in axes:
+        ax.set_ylabel(ylabel if kind == "success" else "mean error (px)", fontsize=9)
     handles = axes[0].get_legend_handles_labels()
-    if legend_ax is not None:
-        legend_ax.legend(*handles, loc="center", fontsize=11, frameon=False,
-                         title="variant", title_fontsize=11)
+    if legend_ax is not None:   # a figure legend centred in the spare grid cell
+        box = legend_ax.get_position()
+        legend_ax.remove()
+        axes[0].figure.legend(*handles, loc="center", fontsize=10, frameon=False,
+                              title="variant", title_fontsize=10,
+                              bbox_to_anchor=(box.x0 + box.width / 2, box.y0 + box.height / 2))
     else:
         axes[0].figure.legend(*handles, loc="lower center", ncol=len(res.variants),
                               fontsize=10, frameon=False)
     axes[0].figure.suptitle(
         ("Fig. 6 — mean tracking error" if kind == "error" else "Fig. 7 — success rate")
-        + f" per scenario ({res.config.n_seeds} sequences each)", fontsize=12)
+        + f" per scenario ({res.config.n_seeds} sequences each)", fontsize=11)
     return axes[0].figure
 
 
@@ -142,7 +143,7 @@ def plot_example_frames(seed: int = 1, frame: int = 120, *, axes: Any = None) ->
     from eotrack.imaging.star_sensor_sim import SCENARIOS, simulate_sequence
 
     if axes is None:
-        _, axes = plt.subplots(1, len(SCENARIOS), figsize=(3.0 * len(SCENARIOS), 3.2))
+        _, axes = plt.subplots(1, len(SCENARIOS), figsize=(1.6 * len(SCENARIOS), 2.0))
     for ax, sc in zip(np.ravel(axes), SCENARIOS):
         seq = simulate_sequence(np.random.default_rng(seed), sc, n_frames=frame + 1)
         ax.imshow(seq.images[frame], cmap="gray", vmin=0, vmax=255)
@@ -243,7 +244,8 @@ def plot_extraction_example(img: np.ndarray, adaptive: Any, global_: Any, g5: in
     import matplotlib.pyplot as plt
 
     if axes is None:
-        _, axes = plt.subplots(1, 2, figsize=(8.5, 3.6))
+        fig, axes = plt.subplots(1, 2, figsize=(7.2, 3.6))
+        fig.subplots_adjust(wspace=0.35)
     a0, a1 = axes
     a0.bar(np.arange(256), np.bincount(np.asarray(img, np.uint8).ravel(), minlength=256),
            width=1)
@@ -251,7 +253,7 @@ def plot_extraction_example(img: np.ndarray, adaptive: Any, global_: Any, g5: in
         a0.axvline(g, color="k", ls=":")
     a0.set_xlabel("grey level g")
     a0.set_ylabel("H(g)")
-    a0.set_title(f"grey histogram, g5 = {g5}, g95 = {g95}")
+    a0.set_title(f"histogram: g5 = {g5}, g95 = {g95}", fontsize=10)
     a1.imshow(img, cmap="gray")
     a1.plot(*np.asarray(adaptive.xy).T, "+", color="lime", label="adaptive")
     if len(global_.xy):
@@ -259,7 +261,10 @@ def plot_extraction_example(img: np.ndarray, adaptive: Any, global_: Any, g5: in
     if truth is not None:
         a1.plot(*truth, "o", mfc="none", mec="yellow", ms=12, label="reference star")
     a1.set_title("detections")
-    a1.legend(fontsize=7, loc="lower right")
+    a1.set_xlabel("x (px)")
+    a1.set_ylabel("y (px)")
+    a1.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.2), ncol=3,
+              frameon=False)
     a1.grid(False)
     return a0.figure
 
@@ -282,8 +287,8 @@ def plot_confidence_trace(seq: Any, track: Any, axes: Any = None) -> Any:
     import matplotlib.pyplot as plt
 
     if axes is None:
-        fig, axes = plt.subplots(2, 1, figsize=(7, 5.2), sharex=True)
-        fig.subplots_adjust(hspace=0.45)
+        fig, axes = plt.subplots(2, 1, figsize=(7, 5.8), sharex=True)
+        fig.subplots_adjust(hspace=0.75)
     e = np.hypot(*(track.xs[:, :2] - seq.truth).T)
     axes[0].plot(seq.visible, label="cloud transmission at the star")
     axes[0].plot(track.confidence, ".", ms=3, label=r"$C_k$")
@@ -295,10 +300,11 @@ def plot_confidence_trace(seq: Any, track: Any, axes: Any = None) -> Any:
                         marker="|", s=60, label=f"mode: {name}")
     axes[0].set_ylim(-0.2, 1.05)
     axes[0].set_ylabel("transmission, confidence")
-    axes[0].legend(fontsize=7, ncol=3, loc="upper center", bbox_to_anchor=(0.5, -0.12),
+    axes[0].legend(fontsize=8, ncol=3, loc="upper center", bbox_to_anchor=(0.5, -0.12),
                    frameon=False)
     axes[0].set_title("BEAK-ST through clouds (strip at the bottom: the filter's mode)")
     axes[1].semilogy(e + 1e-3)
+    axes[1].set_title("its tracking error", fontsize=10)
     axes[1].set_ylabel("error (px)")
     axes[1].set_xlabel("frame")
     return axes[0].figure
@@ -315,7 +321,7 @@ def plot_explore_errors(errors: dict[str, np.ndarray], title: str, ax: Any = Non
     """
     from matplotlib.ticker import FixedLocator, FuncFormatter, NullLocator
 
-    ax = _ax(ax, figsize=(7, 3.2))
+    ax = _ax(ax, figsize=(6.6, 3.2))
     if not isinstance(errors, dict) or not errors:
         raise ValueError("errors must be a non-empty dict variant -> per-frame errors")
     top = 300.0
@@ -324,7 +330,7 @@ def plot_explore_errors(errors: dict[str, np.ndarray], title: str, ax: Any = Non
         if e.ndim != 1:
             raise ValueError(f"errors[{name!r}] must be 1-D, got shape {e.shape}")
         ax.semilogy(e + 1e-3, label=name, **VARIANT_STYLES.get(name, {}))
-        top = max(top, 2.0 * float(np.nanmax(e, initial=0.0)))
+        top = max(top, 30.0 * float(np.nanmax(e, initial=0.0)))   # room for the legend
     if gate_px is not None:
         ax.axhline(gate_px, color="0.5", lw=0.8, ls=":", label=f"gate ({gate_px:g} px)")
     ax.set_ylim(1e-2, top)
@@ -334,7 +340,7 @@ def plot_explore_errors(errors: dict[str, np.ndarray], title: str, ax: Any = Non
     ax.set_xlabel("frame")
     ax.set_ylabel("error (px)")
     ax.set_title(title, fontsize=9)
-    ax.legend(fontsize=8, loc="upper left", ncol=len(errors) + (gate_px is not None))
+    ax.legend(fontsize=9, loc="upper left", ncol=len(errors) + (gate_px is not None))
     return ax.figure
 
 
@@ -350,6 +356,9 @@ def plot_real_sky(img: np.ndarray, xy: np.ndarray, ax: Any = None, *,
         ax.plot(*np.asarray(reference).T, "o", mfc="none", mec="tab:blue", ms=9,
                 label="clean isolated stars (reference)")
     ax.set_title(title, fontsize=9)
-    ax.legend(fontsize=7, loc="lower right")
+    ax.set_xlabel("x (px)")
+    ax.set_ylabel("y (px)")
+    ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.08), ncol=2,
+              frameon=False)
     ax.grid(False)
     return ax.figure
