@@ -189,7 +189,10 @@ def test_lesson_opens_and_ends_with_navigation(book, nb):
     main = _main(book / nb.with_suffix(".html"))
     navs = [m.start() for m in re.finditer(r"<p>←", main)]
     assert len(navs) >= 2, f"{nb}: {len(navs)} navigation lines (want one first, one last)"
-    headings = [m.start() for m in re.finditer(r"<h2", main)]
+    # sections of the lesson: every h2 but the page's "Contents" and the introduction's
+    # "Learning objectives" (the header: title, paper, objectives, then the navigation)
+    headings = [m.start() for m in re.finditer(r"<h2[^>]*>(.*?)</h2>", main, re.S)
+                if not re.search(r"Contents|Learning objectives", m.group(1))]
     assert navs[0] < headings[0] and navs[-1] > headings[-1], (
         f"{nb}: the navigation is not before the first and after the last section")
     for at in (navs[0], navs[-1]):
@@ -207,14 +210,15 @@ def test_index_has_a_lab_sheet_per_lesson(book):
     head = re.sub(r"<[^>]+>", "", table[:table.find("</thead>")]).lower()
     for col in ("run time", "difficulty", "prerequisites", "exercises to hand in"):
         assert col in head, f"the lab sheets have no column {col!r}"
-    rows = re.findall(r"<tr[^>]*>\s*<td[^>]*>(\d\d)</td>(.*?)</tr>", table, re.S)
-    numbers = [n for n, _ in rows]
+    rows = []
+    for tr in re.findall(r"<tr[^>]*>(.*?)</tr>", table[table.find("<tbody"):], re.S):
+        rows.append([re.sub(r"<[^>]+>", "", c).strip()
+                     for c in re.findall(r"<td[^>]*>(.*?)</td>", tr, re.S)])
+    numbers = [r[0] for r in rows]
     assert numbers == [p.name[:2] for p in _lessons()], f"lab sheet rows {numbers}"
-    for n, row in rows:
-        cells = [re.sub(r"<[^>]+>", "", c).strip() for c in re.findall(r"<td[^>]*>(.*?)</td>",
-                                                                      row, re.S)]
-        assert re.search(r"\d+(\.\d+)? min", cells[0]), f"lab {n}: no measured run time"
-        assert cells[-1] not in ("", "—"), f"lab {n}: no exercises to hand in"
+    for cells in rows:
+        assert re.search(r"\d+(\.\d+)? min", cells[1]), f"lab {cells[0]}: no measured run time"
+        assert cells[-1] not in ("", "—"), f"lab {cells[0]}: no exercises to hand in"
     assert "Rubric" in main and "full marks" in main, "the index has no grading rubric"
     assert "_book/teachers.html" in main, "the index does not link the teachers' page"
 
