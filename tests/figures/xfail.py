@@ -23,7 +23,6 @@ XFAIL: dict[str, str] = {
     "nocase:akf_star.plot_success_curves": "P05",  # no lint case yet
     "nocase:track_init_hough.plot_scene_tracks": "P04",  # no lint case yet
     # notebooks: stored before the kernel recorded the lint's verdict (2026-12-02 00:00)
-    "notebook:01_wransac_trajectory_prediction": "P01",  # not-linted 12
     "notebook:02_epipolar_association": "P02",  # not-linted
     "notebook:03_track_init_hypothesis_testing": "P03",  # not-linted
     "notebook:04_track_init_logic_hough": "P04",  # not-linted
