@@ -218,6 +218,12 @@ def test_random_detections_and_large_errors_give_no_consistent_match():
     xy, cat, wg, _, _ = scene(rng, *FIELD, err_arcsec=900.0)
     with pytest.raises(PlateSolveError, match="no consistent match"):
         solve_plate(xy, cat, wg, max_offset_arcsec=300.0)
+    # a dense field of noise searched widely: many chance pairs, the Poisson bound must hold
+    centre = np.array(wg.wcs_pix2world([[127.5, 127.5]], 0)[0])
+    dense = centre + rng.uniform(-0.55, 0.55, (150, 2)) * [1 / np.cos(np.radians(centre[1])), 1]
+    for _ in range(5):
+        with pytest.raises(PlateSolveError, match="no consistent match"):
+            solve_plate(rng.uniform(0, 255, (150, 2)), dense, wg, max_offset_arcsec=1800.0)
 
 
 def test_bad_inputs_name_the_argument():

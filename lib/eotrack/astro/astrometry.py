@@ -464,8 +464,12 @@ def _vote(det: np.ndarray, pred: np.ndarray, centre: np.ndarray, rolls: np.ndarr
         score = n - spread
         if score > best_score:
             best_score = score
-            lam = len(off) * (radius / max_off) ** 2
-            best = (n, float(ang), centre_off, lam, len(off))
+            # chance votes: uniform over the search disc, or the local background in an
+            # annulus (r, 5r) around the peak (offsets pile up towards zero when the search
+            # disc is larger than the frame) — whichever is larger
+            lam_disc = len(off) * (radius / max_off) ** 2
+            ring = len(tree_o.query_ball_point(off[k], 5.0 * radius)) - n
+            best = (n, float(ang), centre_off, max(lam_disc, ring / 24.0), len(off))
     return best
 
 
