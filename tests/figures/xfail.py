@@ -23,10 +23,8 @@ XFAIL: dict[str, str] = {
     "nocase:akf_star.plot_success_curves": "P05",  # no lint case yet
     "nocase:track_init_hough.plot_scene_tracks": "P04",  # no lint case yet
     # notebooks: stored before the kernel recorded the lint's verdict (2026-12-02 00:00)
-    "notebook:02_epipolar_association": "P02",  # not-linted
     "notebook:03_track_init_hypothesis_testing": "P03",  # not-linted
     "notebook:04_track_init_logic_hough": "P04",  # not-linted
-    "notebook:05_akf_star_tracking": "P05",  # not-linted
     "notebook:07_capstone_geo_surveillance": "CAP",  # not-linted 6
     "report:akf_star/fig6_mean_tracking_error": "P05",  # small-text 51, too-wide 1
     "report:akf_star/fig7_success_rate": "P05",  # small-text 52, too-wide 1
