@@ -184,6 +184,6 @@ register("epipolar.5", NumericAnswer(
     "The 90 % error-budget gate (px) with the paper's 1′ read as an rms attitude error and a "
     "100 µrad centroid jitter.",
     expected=_ex5_expected, rtol=0.02,
-    hint="uniform noise of bound b has rms b/√3, so pass attitude_arcmin = √3 and "
-         "jitter_urad = 100 to ErrorConfig and p = 0.90 to error_budget_gate (the gate is its "
-         "second value); the distance is one coordinate, so χ² has one degree of freedom"))
+    hint="uniform noise of bound b has rms b/√3: which bound has an rms of 1′? The gate is "
+         "σ·√χ²₁(p) — one degree of freedom (a distance to a line is one coordinate) — and "
+         "the probability asked is not the library's default"))
