@@ -137,6 +137,14 @@ def test_cloudy_and_unreadable_frames_are_skipped_and_the_run_goes_on(tmp_path):
     assert len(set(tab["track"])) == 1 and len(tab) >= 4        # the others still give a track
 
 
+def test_a_blank_frame_is_skipped_at_extraction():
+    f = sim().frames[0]
+    blank = Frame(np.zeros((64, 64)), f.time, 2.0, "s", f.wcs_guess, "blank")
+    with pytest.warns(FrameSkippedWarning, match="frame 'blank': stage 'extraction'"):
+        tab = measure_frames([blank])
+    assert tab.meta["skipped"][0]["stage"] == "extraction" and len(tab) == 0
+
+
 def test_measure_frame_and_separation():
     s = sim()
     cfg = PipelineConfig()
