@@ -10,24 +10,12 @@ before the kernel recorded the lint's verdict: re-execute it).
 
 # measured by the lint on 2026-12-01 21:25 (comment: the rules each figure still fails)
 XFAIL: dict[str, str] = {
-    "case:akf_star.plot_example_frames": "P05",  # small-text 5, too-wide 1
     "case:track_init_hough.plot_explore": "P04",  # legend-covers-data 2, small-text 38, title 1, t
-    "nocase:akf_star.plot_confidence_trace": "P05",  # no lint case yet
-    "nocase:akf_star.plot_diurnal_check": "P05",  # no lint case yet
-    "nocase:akf_star.plot_error_curves": "P05",  # no lint case yet
-    "nocase:akf_star.plot_explore_errors": "P05",  # no lint case yet
-    "nocase:akf_star.plot_extraction_example": "P05",  # no lint case yet
-    "nocase:akf_star.plot_real_sky": "P05",  # no lint case yet
-    "nocase:akf_star.plot_sage_husa": "P05",  # no lint case yet
-    "nocase:akf_star.plot_ship_attitude": "P05",  # no lint case yet
-    "nocase:akf_star.plot_success_curves": "P05",  # no lint case yet
     "nocase:track_init_hough.plot_scene_tracks": "P04",  # no lint case yet
     # notebooks: stored before the kernel recorded the lint's verdict (2026-12-02 00:00)
     "notebook:03_track_init_hypothesis_testing": "P03",  # not-linted
     "notebook:04_track_init_logic_hough": "P04",  # not-linted
     "notebook:07_capstone_geo_surveillance": "CAP",  # not-linted 6
-    "report:akf_star/fig6_mean_tracking_error": "P05",  # small-text 51, too-wide 1
-    "report:akf_star/fig7_success_rate": "P05",  # small-text 52, too-wide 1
     "report:track_init_hough/angle_constraint": "P04",  # log-labels 2, small-text 4, title 1
     "report:track_init_hough/beyond_logic_false_track_rate": "P04",  # log-labels 1, small-text 4,
     "report:track_init_hough/chance_rate_check": "P04",  # log-labels 2, title 1
