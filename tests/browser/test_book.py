@@ -107,7 +107,6 @@ SUBPACKAGES = tuple(sorted(
 #: their owners redraw them narrower (house style: at most ~8.2 in at 110 dpi); value: owner
 WIDE_FIGURES_XFAIL: dict[str, str] = {
     "notebooks/04_track_init_logic_hough": "P04",
-    "notebooks/05_akf_star_tracking": "P05",
     "papers_repro/akf_star/REPORT": "P05",
     "papers_repro/track_init_hough/REPORT": "P04",
 }
