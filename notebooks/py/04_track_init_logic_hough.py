@@ -58,7 +58,6 @@ display(Markdown(f"**{_card['summary']}** — " + "; ".join(
 import math
 
 import cv2
-import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
 from eotrack.exercises import check
@@ -417,12 +416,9 @@ print("tracks found (6 / 26 / verified):", [nominal[key]["correct"] for key in (
 # `N["redraws"]` redraws of the residual stars and the centroid noise.
 
 # %%
-fig, axes = plt.subplots(1, 2, figsize=(11, 5.6))
-TH.plot_fig3(scene, t2[6][1], ax=axes[0])
-axes[0].set_title("Fig. 3 — paper's procedure (6-neighbourhood)")
-TH.plot_fig3(scene, t2["ours"][1], ax=axes[1])
-axes[1].set_title("Fig. 3 — verified initiator")
-fig.tight_layout()
+fig = TH.plot_fig3_pair(scene, t2[6][1], t2["ours"][1],
+                        titles=("paper (6-neighbourhood)", "verified initiator"),
+                        suptitle="Fig. 3 — extracted tracks")
 
 # %%
 redraws = TH.xu_redraws(cfg, N["redraws"], runner=runner)
@@ -441,11 +437,7 @@ red.rename(columns={"exact": "fraction exact", "false": "mean false tracks"})
 # %%
 comp, comp_trials = TH.run_comparison(comp_cfg, n_trials=N["comparison"], runner=runner,
                                       xu=cfg, per_trial=True)
-fig, axes = plt.subplots(2, 2, figsize=(11, 7.5))
-for i, sweep in enumerate(("clutter", "p_detect")):
-    for j, metric in enumerate(("p_correct", "false_per_frame")):
-        TH.plot_comparison(comp, sweep, metric, ax=axes[j, i])
-fig.tight_layout()
+fig = TH.plot_comparison_grid(comp)
 
 # %%
 comp.pivot_table(index=["sweep", "clutter", "p_detect"], columns="method",

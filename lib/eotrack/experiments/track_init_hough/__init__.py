@@ -26,7 +26,6 @@ import numpy as np
 import pandas as pd
 
 from eotrack.montecarlo import TrialRunner
-from eotrack.plotting import legend_outside
 from eotrack.repro import Reproduction, load_claims
 
 from .baselines import StoneSoupInitiator, stonesoup_comparison
@@ -47,8 +46,10 @@ from .figures import (
     plot_angle_constraint,
     plot_chance_check,
     plot_comparison,
+    plot_comparison_grid,
     plot_explore,
     plot_fig3,
+    plot_fig3_pair,
     plot_logic_false_tracks,
     plot_planted_summary,
     plot_rho_theta_votes,
@@ -128,8 +129,10 @@ __all__ = [
     "plot_angle_constraint",
     "plot_chance_check",
     "plot_comparison",
+    "plot_comparison_grid",
     "plot_explore",
     "plot_fig3",
+    "plot_fig3_pair",
     "plot_logic_false_tracks",
     "plot_planted_summary",
     "plot_rho_theta_votes",
@@ -267,22 +270,10 @@ def reproduce(*, quick: bool = False, runner: TrialRunner | None = None,
     fig, ax = plt.subplots(figsize=(5.4, 5.4))
     plot_xu_frames(scene, ax=ax)
     figs["fig2_candidates"] = fig
-    fig, axes = plt.subplots(1, 2, figsize=(7.5, 6.4))
-    plot_fig3(scene, tracks, ax=axes[0])
-    axes[0].set_title(f"6-neighbourhood ({len(tracks)} tracks)")
-    plot_fig3(scene, all_tracks[26], ax=axes[1])
-    axes[1].set_title(f"26-neighbourhood ({len(all_tracks[26])} tracks)")
-    fig.suptitle("Fig. 3 — extracted tracks, the paper's procedure")
-    fig.tight_layout()
-    figs["fig3_extracted_tracks"] = fig
-    fig, axes = plt.subplots(2, 2, figsize=(7.5, 7.2))
-    for i, sweep in enumerate(("clutter", "p_detect")):
-        for j, metric in enumerate(("p_correct", "false_per_frame")):
-            plot_comparison(comp, sweep, metric, ax=axes[j, i])
-    fig.tight_layout()
-    legend_outside(fig, where="below", ncol=3)
-    fig.subplots_adjust(bottom=0.2)
-    figs["comparison_monte_carlo"] = fig
+    figs["fig3_extracted_tracks"] = plot_fig3_pair(
+        scene, tracks, all_tracks[26], titles=("6-neighbourhood", "26-neighbourhood"),
+        suptitle="Fig. 3 — extracted tracks, the paper's procedure")
+    figs["comparison_monte_carlo"] = plot_comparison_grid(comp)
     fig, ax = plt.subplots()
     plot_logic_false_tracks(logic_ft, ax=ax)
     figs["beyond_logic_false_track_rate"] = fig

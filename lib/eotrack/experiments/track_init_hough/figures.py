@@ -28,8 +28,10 @@ __all__ = [
     "plot_angle_constraint",
     "plot_chance_check",
     "plot_comparison",
+    "plot_comparison_grid",
     "plot_explore",
     "plot_fig3",
+    "plot_fig3_pair",
     "plot_logic_false_tracks",
     "plot_planted_summary",
     "plot_rho_theta_votes",
@@ -81,8 +83,9 @@ def plot_fig3(scene: Scene, tracks: list[Track], ax: plt.Axes | None = None) -> 
 
 
 def plot_comparison(df: pd.DataFrame, sweep: str, metric: str,
-                    ax: plt.Axes | None = None) -> plt.Axes:
-    """One metric (``p_correct`` / ``false_per_frame``) versus the sweep variable, per method."""
+                    ax: plt.Axes | None = None, *, legend: bool = True) -> plt.Axes:
+    """One metric (``p_correct`` / ``false_per_frame``) versus the sweep variable, per method
+    (``legend=False``: no legend, for a grid with one shared legend)."""
     ax = get_ax(ax)
     sub = df[df["sweep"] == sweep]
     x = "clutter" if sweep == "clutter" else "p_detect"
@@ -99,8 +102,35 @@ def plot_comparison(df: pd.DataFrame, sweep: str, metric: str,
     ax.set_title({"p_correct": "correct initiations",
                   "false_per_frame": "false tracks"}[metric]
                  + (" vs clutter" if x == "clutter" else " vs P_D"))
-    legend_outside(ax, where="right")
+    ax.xaxis.set_major_locator(plt.MaxNLocator(4))
+    if legend:
+        legend_outside(ax, where="right")
     return ax
+
+
+def plot_comparison_grid(df: pd.DataFrame) -> Figure:
+    """The method comparison as a 2 × 2 grid (P(correct) and false tracks versus clutter and
+    P_D) with one shared legend below."""
+    fig, axes = plt.subplots(2, 2, figsize=(7.5, 7.0))
+    for i, sweep in enumerate(("clutter", "p_detect")):
+        for j, metric in enumerate(("p_correct", "false_per_frame")):
+            plot_comparison(df, sweep, metric, ax=axes[j, i], legend=False)
+    fig.tight_layout()
+    legend_outside(fig, where="below", ncol=3)
+    return fig
+
+
+def plot_fig3_pair(scene: Scene, left: list[Track], right: list[Track], *,
+                   titles: tuple[str, str] = ("left", "right"), suptitle: str = "") -> Figure:
+    """Two Fig. 3 panels side by side (e.g. the paper's procedure and a variant)."""
+    fig, axes = plt.subplots(1, 2, figsize=(7.5, 6.4))
+    for ax, tracks, title in zip(axes, (left, right), titles):
+        plot_fig3(scene, tracks, ax=ax)
+        ax.set_title(f"{title} ({len(tracks)} tracks)")
+    if suptitle:
+        fig.suptitle(suptitle)
+    fig.tight_layout()
+    return fig
 
 
 def plot_logic_false_tracks(df: pd.DataFrame, ax: plt.Axes | None = None) -> plt.Axes:
@@ -271,7 +301,6 @@ def plot_planted_summary(summary: pd.DataFrame, axes=None, *, recall_min: float 
     axes[1].set_title("false tracks")
     fig.tight_layout()
     legend_outside(fig, where="below", ncol=2)
-    fig.subplots_adjust(bottom=0.32)
     return fig
 
 
