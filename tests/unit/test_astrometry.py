@@ -194,6 +194,17 @@ def test_linear_fit_equals_astropy_fit_wcs_from_points():
     assert a.rms_arcsec == pytest.approx(b.rms_arcsec, rel=1e-3)
 
 
+def test_stars_split_along_their_trails_are_refused_not_solved_wrong():
+    # a trail sampled by spots 2.7 px apart: the extractor finds each star two or three times
+    rng = np.random.default_rng(12)
+    xy, cat, wg, _, _ = scene(rng, *FIELD, n_false=5, drop=0.0)
+    step = np.array([2.7, 0.0])
+    split = np.vstack([xy + step, xy, xy - step])
+    with pytest.raises(PlateSolveError, match="ambiguous match") as ei:
+        solve_plate(split, cat, wg)
+    assert ei.value.reason == "ambiguous_match"
+
+
 def test_too_few_stars_and_clouds_raise_with_reason():
     rng = np.random.default_rng(7)
     xy, cat, wg, _, _ = scene(rng, *FIELD)

@@ -62,7 +62,7 @@ __all__ = [
 
 ARCSEC_PER_DEG = 3600.0
 _REASONS = ("too_few_detections", "too_few_catalogue_stars", "no_consistent_match",
-            "too_few_matches", "poor_fit")
+            "ambiguous_match", "too_few_matches", "poor_fit")
 
 
 class PlateSolveError(ValueError):
@@ -72,6 +72,8 @@ class PlateSolveError(ValueError):
     ``too_few_catalogue_stars`` (a sparse field or a catalogue too shallow),
     ``no_consistent_match`` (no pointing offset is shared by enough star pairs: the pointing
     error is larger than searched, the wrong catalogue, or only noise detected),
+    ``ambiguous_match`` (a second, distinct offset is shared by nearly as many pairs — e.g.
+    stars split into several detections each along their trails),
     ``too_few_matches`` (fewer than ``min_stars`` stars survive the sigma clipping),
     ``poor_fit`` (the fitted WCS does not reproduce the stars).
     """
@@ -440,13 +442,15 @@ def _rotate(p: np.ndarray, centre: np.ndarray, ang: float) -> np.ndarray:
 
 
 def _vote(det: np.ndarray, pred: np.ndarray, centre: np.ndarray, rolls: np.ndarray,
-          max_off: float, radius: float) -> tuple[int, float, np.ndarray, float, int]:
-    """Best (votes, roll, offset, expected chance votes, pairs) of the offset vote.
+          max_off: float, radius: float) -> tuple[int, float, np.ndarray, float, int, int]:
+    """Best (votes, roll, offset, expected chance votes, pairs, runner-up votes) of the vote.
 
-    Ties between roll grid points are broken by the spread of the winning cluster.
+    Ties between roll grid points are broken by the spread of the winning cluster. The
+    runner-up is the largest peak of the same roll farther than ``1.25 radius`` from the
+    winner.
     """
     tree_d = cKDTree(det)
-    best = (0, 0.0, np.zeros(2), 0.0, 0)
+    best = (0, 0.0, np.zeros(2), 0.0, 0, 0)
     best_score = -np.inf
     for ang in rolls:
         pr = _rotate(pred, centre, ang)
@@ -469,7 +473,9 @@ def _vote(det: np.ndarray, pred: np.ndarray, centre: np.ndarray, rolls: np.ndarr
             # disc is larger than the frame) — whichever is larger
             lam_disc = len(off) * (radius / max_off) ** 2
             ring = len(tree_o.query_ball_point(off[k], 5.0 * radius)) - n
-            best = (n, float(ang), centre_off, max(lam_disc, ring / 24.0), len(off))
+            far = np.linalg.norm(off - centre_off, axis=1) > 1.25 * radius
+            second = int(counts[far].max()) if far.any() else 0
+            best = (n, float(ang), centre_off, max(lam_disc, ring / 24.0), len(off), second)
     return best
 
 
@@ -532,6 +538,8 @@ def solve_plate(xy_px: Any, catalog_radec_deg: Any, wcs_guess: WCS, *,
     PlateSolveError
         ``too_few_detections`` / ``too_few_catalogue_stars`` (fewer than ``min_stars``),
         ``no_consistent_match`` (the vote's peak is not above its chance background),
+        ``ambiguous_match`` (a second offset, more than ``1.25 match_radius_px`` away, has at
+        least ``min_stars`` and 70 % of the winner's votes),
         ``too_few_matches`` (fewer than ``min_stars`` survive clipping), ``poor_fit``.
     TypeError, ValueError
         Bad arguments (named).
@@ -597,8 +605,8 @@ def solve_plate(xy_px: Any, catalog_radec_deg: Any, wcs_guess: WCS, *,
     n_roll = int(np.ceil(np.radians(max_roll) / step)) if max_roll > 0 else 0
     rolls = np.linspace(-np.radians(max_roll), np.radians(max_roll), 2 * n_roll + 1) \
         if n_roll else np.zeros(1)
-    votes, roll, off, lam, n_pairs = _vote(xy[:n_vote], px[:n_vote], centre, rolls, max_off,
-                                           r_match)
+    votes, roll, off, lam, n_pairs, second = _vote(xy[:n_vote], px[:n_vote], centre, rolls,
+                                                   max_off, r_match)
     # Poisson bound on the highest chance peak over all pairs and rolls
     n_tries = max(n_pairs, 1) * len(rolls)
     need = max(n_min, _poisson_quantile(lam, 1e-3 / n_tries) + 1)
@@ -614,6 +622,12 @@ def solve_plate(xy_px: Any, catalog_radec_deg: Any, wcs_guess: WCS, *,
                               f"{votes} star pair(s), need {need} (chance level {lam:.1f}) — "
                               f"is the pointing error larger than {max_off_as:g}″, the roll "
                               f"larger than {max_roll:g}°, or the frame only noise?")
+    if second >= max(n_min, 0.7 * votes):
+        raise PlateSolveError("ambiguous_match",
+                              f"ambiguous match: two pointing offsets more than "
+                              f"{1.25 * r_match:g} px apart are shared by {votes} and {second} "
+                              "star pairs — several detections per star (trailed or doubled "
+                              "stars split by the extractor?) or a repetitive field")
     pred = _rotate(px, centre, roll) + off
     i_det, j_cat = _one_to_one(xy, pred, r_match)
     n_cand = len(i_det)
