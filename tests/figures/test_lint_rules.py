@@ -91,6 +91,31 @@ def test_small_text_at_book_width():
     assert {"small-text", "too-wide"} <= set(_rules(fig))
 
 
+def test_width_as_saved_includes_the_tight_box_padding():
+    """savefig(bbox_inches="tight") pads 0.1 in on each side: a figure whose drawn box is just
+    under the limit is saved just over it (wransac's orbit-fit figure: 903 px in the book)."""
+    import matplotlib as mpl
+    from eotrack.plotting.lint import MIN_BOOK_SCALE, saved_width_in
+    from eotrack.plotting.style import BOOK_COLUMN_PX
+
+    fig, _ = _clean()
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    tight = fig.get_tightbbox(renderer).width
+    assert saved_width_in(fig, renderer) == pytest.approx(
+        tight + 2 * mpl.rcParams["savefig.pad_inches"])
+    limit_in = BOOK_COLUMN_PX / MIN_BOOK_SCALE / mpl.rcParams["savefig.dpi"]
+    # widen the figure until its drawn box is 0.05–0.15 in under the limit: saved, it is over
+    for _ in range(20):
+        fig.canvas.draw()
+        tight = fig.get_tightbbox(fig.canvas.get_renderer()).width
+        if limit_in - 0.15 < tight < limit_in - 0.05:
+            break
+        fig.set_size_inches(fig.get_figwidth() + (limit_in - 0.1 - tight), fig.get_figheight())
+    assert limit_in - 0.15 < tight < limit_in - 0.05
+    assert "too-wide" in _rules(fig)
+
+
 def test_same_colour_and_style():
     fig, ax = _clean()
     ax.plot([1, 2], [3, 3], label="another LSQ", **method_style("lsq").line())
