@@ -15,7 +15,6 @@ XFAIL: dict[str, str] = {
     # notebooks: stored before the kernel recorded the lint's verdict (2026-12-02 00:00)
     "notebook:03_track_init_hypothesis_testing": "P03",  # not-linted
     "notebook:04_track_init_logic_hough": "P04",  # not-linted
-    "notebook:07_capstone_geo_surveillance": "CAP",  # not-linted 6
     # the committed PNGs predate the figure fix (quick run: 0 problems); regenerate the report
     "report:akf_star/fig6_mean_tracking_error": "P05",  # too-wide 1 (committed PNG 1072 px)
     "report:akf_star/fig7_success_rate": "P05",  # too-wide 1 (committed PNG 1061 px)
