@@ -303,3 +303,21 @@ def test_property_camera_and_wcs_round_trip(ra, dec, roll, f, skew, mirror):
     K2, R2 = camera_from_wcs(w)
     np.testing.assert_allclose(K2, K, rtol=1e-8, atol=1e-6 * f)
     np.testing.assert_allclose(R2, R, atol=1e-9)
+
+
+def test_position_error_matches_the_scatter_of_the_solutions():
+    rng = np.random.default_rng(13)
+    pts = np.array([[127.5, 127.5], [5.0, 5.0]])
+    err, pred = [], []
+    for _ in range(40):
+        xy, cat, wg, wt, _ = scene(rng, *FIELD, noise_px=0.2, n_false=0, drop=0.0)
+        sol = solve_plate(xy, cat, wg)
+        ra_t, de_t = wt.wcs_pix2world(pts, 0).T
+        ra_f, de_f = sol.wcs.wcs_pix2world(pts, 0).T
+        err.append(np.c_[(ra_f - ra_t) * np.cos(np.radians(de_t)), de_f - de_t] * 3600)
+        pred.append(sol.position_error_arcsec(pts))
+    err, pred = np.array(err), np.array(pred)
+    got = np.sqrt(np.mean(err ** 2, axis=(0, 2)))       # per-axis RMS at centre and corner
+    want = np.sqrt(np.mean(pred ** 2, axis=0))
+    np.testing.assert_allclose(got, want, rtol=0.35)
+    assert want[1] > want[0]                             # the corner is an extrapolation

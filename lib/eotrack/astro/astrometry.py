@@ -319,6 +319,12 @@ class PlateSolution:
         The roll (deg) of the vote's best grid point (resolution: the grid step).
     n_candidates
         Pairs within the match radius before the first fit.
+    fit_cov
+        ``(AᵀA)⁻¹`` of the final fit's design ``A = [x, y, 1]`` of the matched stars (px),
+        for :meth:`position_error_arcsec`.
+    sigma_axis_arcsec
+        Per-axis σ of one star's residual, unbiased for the fit's 6 parameters:
+        ``rms · √(n / (2n − 6))``.
     """
 
     wcs: WCS
@@ -330,11 +336,26 @@ class PlateSolution:
     offset_px: np.ndarray
     roll_deg: float
     n_candidates: int
+    fit_cov: np.ndarray
+    sigma_axis_arcsec: float
 
     @property
     def pixel_scale_arcsec(self) -> float:
         """Mean plate scale (″/px) of the fitted WCS."""
         return pixel_scale_arcsec(self.wcs)
+
+    def position_error_arcsec(self, xy: Any) -> np.ndarray:
+        """Per-axis 1σ error (″) of the solved WCS itself at pixels ``(n, 2)``.
+
+        The least-squares covariance of the fit propagated to each position:
+        ``σ_axis · √([x, y, 1] (AᵀA)⁻¹ [x, y, 1]ᵀ)`` — smallest near the matched stars'
+        centroid, growing towards corners they do not cover (an extrapolation). It is the
+        error a direction taken from this plate solution inherits, on top of its own
+        centroid error.
+        """
+        p = as_points(xy, "xy")
+        h = np.column_stack([p, np.ones(len(p))])
+        return self.sigma_axis_arcsec * np.sqrt(np.einsum("ni,ij,nj->n", h, self.fit_cov, h))
 
     def pixel_to_radec(self, xy: Any) -> tuple[np.ndarray, np.ndarray]:
         """RA and Dec (deg) of pixel positions ``(n, 2)``."""
@@ -706,8 +727,11 @@ def solve_plate(xy_px: Any, catalog_radec_deg: Any, wcs_guess: WCS, *,
                               f"{len(res)} stars exceeds the match radius "
                               f"({r_match * scale:.1f}″)")
     wcs.pixel_shape = (nx, ny)
-    return PlateSolution(wcs, len(i_det), i_det, idx[j_cat], res, rms, np.asarray(off, float),
-                         float(np.degrees(roll)), n_cand)
+    A = np.column_stack([xy[i_det], np.ones(len(i_det))])
+    n_m = len(i_det)
+    return PlateSolution(wcs, n_m, i_det, idx[j_cat], res, rms, np.asarray(off, float),
+                         float(np.degrees(roll)), n_cand, np.linalg.inv(A.T @ A),
+                         rms * float(np.sqrt(n_m / max(2 * n_m - 6, 1))))
 
 
 def _lmeds_inliers(xy: np.ndarray, q: np.ndarray, k_clip: float, floor_arcsec: float,

@@ -164,16 +164,17 @@ class FrameMeasurement:
         """Per-axis 1σ angular uncertainty (″) of every detection.
 
         Centroid error ``max(centroid_k / SNR, centroid_floor_px)`` (px, times the plate
-        scale) combined in quadrature with the plate solution's error at a point of the frame,
-        ``(rms/√2)·√(3/n_matched)`` (the per-axis star residual over the matched stars, three
-        parameters per axis). Detections given without SNR use ``initiator_sigma_px``.
+        scale) combined in quadrature with the plate solution's own error at the detection
+        (:meth:`eotrack.astro.astrometry.PlateSolution.position_error_arcsec`: the fit's
+        covariance, larger where the matched stars do not reach). Detections given without
+        SNR use ``initiator_sigma_px``.
         """
         cfg = PipelineConfig() if config is None else config
         c_px = np.where(np.isfinite(self.snr), cfg.centroid_k / np.maximum(self.snr, 1e-9),
                         cfg.initiator_sigma_px)
         c_px = np.maximum(c_px, cfg.centroid_floor_px)
         sol = self.solution
-        plate = sol.rms_arcsec / np.sqrt(2.0) * np.sqrt(3.0 / sol.n_matched)
+        plate = sol.position_error_arcsec(self.xy) if len(self.xy) else np.zeros(0)
         return np.hypot(c_px * self.pixel_scale_arcsec, plate)
 
 
