@@ -45,10 +45,14 @@ def gate_study() -> Any:
 
     scen = _scen()
     run = TrialRunner(progress=False)
-    fig, axs = plt.subplots(1, 2, figsize=(7.5, 3.6), sharey=True, layout="constrained")
-    E.plot_gate_study(E.gate_study(scen, (0.5, 1.0), n_draws=10, runner=run), ax=axs[0])
+    from eotrack.plotting import legend_outside
+
+    fig, axs = plt.subplots(1, 2, figsize=(7.2, 3.8), sharey=True, layout="constrained")
+    E.plot_gate_study(E.gate_study(scen, (0.5, 1.0), n_draws=10, runner=run), ax=axs[0],
+                      legend=False)
     E.plot_gate_study(E.gate_study(scen, (0.5, 1.0), gaussian=True, n_draws=10, runner=run),
-                      ax=axs[1])
+                      ax=axs[1], legend=False)
+    legend_outside(fig, where="below", ncol=3)
     return fig
 
 

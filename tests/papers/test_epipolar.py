@@ -388,3 +388,20 @@ def test_table3_measure_matches_the_score(rep):
     assert row.status is Status.NOT_REPRODUCED
     with pytest.raises(ValueError):
         E.table3_measure(np.array([]), 9)
+
+
+def test_another_sensor_sees_the_same_objects():
+    """Held out: the wide-field reference sensor views the paper's objects from the same
+    pointings (the objects do not move with the sensor); visibility is recomputed."""
+    paper = E.build_scenario()
+    wide = E.build_scenario(E.ST_APS2_2)
+    np.testing.assert_array_equal(wide.objects_km, paper.objects_km)
+    for a, b in zip(wide.cameras, paper.cameras):
+        np.testing.assert_array_equal(a.R, b.R)
+        np.testing.assert_array_equal(a.c, b.c)
+    assert wide.cameras[0].size == (1024, 1024)
+    assert wide.visible.sum() >= paper.visible.sum()  # a 20° field sees at least as much
+    fine = E.build_scenario(E.SensorConfig(resolution_px=1024))
+    np.testing.assert_array_equal(fine.objects_km, paper.objects_km)
+    with pytest.raises(TypeError):
+        E.build_scenario("ST-APS2-2")

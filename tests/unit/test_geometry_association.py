@@ -327,3 +327,14 @@ def test_held_out_three_view_check_rejects_pairs_meeting_behind_the_cameras():
     assert d[0, 0] < 1e-6 and d[1, 1] < 1e-6  # both pairs satisfy eq. (8)
     keep = three_view_check(pa, pb, [[0, 0], [1, 1]], cam_a, cam_b, [], gate_px=3.0)
     assert keep.tolist() == [True, False]
+
+
+def test_summary_table_refuses_non_integer_and_non_one_to_one_pairs():
+    with pytest.raises(ValueError, match="one-to-one"):
+        summary_table([2, 1], {(0, 1): [[0, 0], [1, 0]]})
+    with pytest.raises(ValueError, match="integer"):
+        summary_table([2, 1], {(0, 1): [[0.7, 0]]})
+    with pytest.raises(ValueError, match="integer"):
+        summary_table([2, 1], {(0, 1): [["a", "b"]]})
+    # whole-valued floats (e.g. from a float array) are accepted
+    assert summary_table([1, 1], {(0, 1): np.array([[0.0, 0.0]])}).tolist() == [[0, 0]]

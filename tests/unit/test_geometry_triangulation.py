@@ -133,3 +133,14 @@ def test_held_out_rays_match_least_squares_reference(seed, n):
     b = sum((np.eye(3) - np.outer(ui, ui)) @ oi for ui, oi in zip(u, o))
     ref = np.linalg.solve(A, b)
     np.testing.assert_allclose(triangulate_rays(o, d), ref, rtol=1e-7, atol=1e-6)
+
+
+def test_robust_rules_need_three_estimates_and_refuse_an_empty_result():
+    two = np.array([[0.0, 0, 0], [100.0, 0, 0]])
+    # n = 2: the median is the midpoint, so "gate" keeps both or none, "mad" keeps both
+    assert combine_estimates(two, rule="gate", gate_km=60.0).kept.tolist() == [True, True]
+    assert combine_estimates(two, rule="mad").kept.tolist() == [True, True]
+    with pytest.raises(ValueError, match="no estimate survives"):
+        combine_estimates(two, rule="gate", gate_km=1.0)
+    three = np.array([[0.0, 0, 0], [1.0, 0, 0], [100.0, 0, 0]])
+    assert combine_estimates(three, rule="gate", gate_km=5.0).kept.tolist() == [True, True, False]

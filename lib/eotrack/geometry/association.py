@@ -204,6 +204,12 @@ def summary_table(n_points: Sequence[int], matches: Mapping[tuple[int, int], np.
         ``(rows, n_maps)`` point indices, −1 where a map has no element in the row. Every point
         appears in exactly one row; rows with a single element are points associated with
         nothing (the paper's table lists only rows with two or more).
+
+    Raises
+    ------
+    ValueError
+        Negative counts, keys not ``(a, b)`` with ``a < b``, non-integer or out-of-range
+        indices, or pairs that are not one-to-one (a point in two pairs of one map pair).
     """
     counts = [int(n) for n in n_points]
     if any(n < 0 for n in counts):
@@ -214,9 +220,15 @@ def summary_table(n_points: Sequence[int], matches: Mapping[tuple[int, int], np.
         a, b = key
         if not (0 <= a < b < n_maps):
             raise ValueError(f"matches keys must be (a, b) with 0 <= a < b < {n_maps}, got {key}")
-        p = np.asarray(pairs, int).reshape(-1, 2)
+        raw = np.asarray(pairs)
+        if raw.size and (raw.dtype.kind not in "iuf" or (raw.dtype.kind == "f" and (
+                not np.all(np.isfinite(raw)) or np.any(raw != np.round(raw))))):
+            raise ValueError(f"matches[{key}] must hold integer point indices")
+        p = raw.astype(int).reshape(-1, 2)
         if len(p) and (p[:, 0].max() >= counts[a] or p[:, 1].max() >= counts[b] or p.min() < 0):
             raise ValueError(f"matches[{key}] holds an index outside the maps' point counts")
+        if len(np.unique(p[:, 0])) < len(p) or len(np.unique(p[:, 1])) < len(p):
+            raise ValueError(f"matches[{key}] is not one-to-one: a point appears in two pairs")
         linked[(a, b)] = {(int(i), int(j)) for i, j in p}
     rows: list[list[int]] = []
     for m in range(n_maps):

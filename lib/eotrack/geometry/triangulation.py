@@ -165,13 +165,22 @@ def combine_estimates(estimates, *, rule: str = "paper", k: float = 3.0,
         ``"mad"``: reject if any coordinate is more than ``k`` robust standard deviations
         (1.4826 · MAD, at least ``scale_floor_km``) from the coordinate-wise median;
         ``"gate"``: reject if the distance to the coordinate-wise median exceeds ``gate_km``
-        (a bound from the error budget; works for any n).
+        (a bound from the error budget).
+        Both robust rules need n ≥ 3 to reject *one* estimate: ``"mad"`` keeps everything for
+        n < 3, and for n = 2 the median is the midpoint, so ``"gate"`` keeps both or rejects
+        both.
     k
         Multiplier (> 0).
     gate_km
         Distance gate for ``rule="gate"`` (> 0).
     scale_floor_km
         Smallest robust scale used by ``"mad"`` (> 0).
+
+    Raises
+    ------
+    ValueError
+        Bad input, or no estimate survives the rule (e.g. two estimates farther apart than
+        ``2 · gate_km``): there is then no position to return.
     """
     est = as_finite_array(estimates, "estimates", ndim=2)
     if est.shape[1:] != (3,) or len(est) == 0:
@@ -195,5 +204,7 @@ def combine_estimates(estimates, *, rule: str = "paper", k: float = 3.0,
         g = check_positive(gate_km, "gate_km")
         keep = np.linalg.norm(est - np.median(est, 0), axis=1) <= g
     if not keep.any():
-        keep = np.ones(n, bool)
+        raise ValueError(f"no estimate survives rule={rule!r} (all {n} rejected)"
+                         + (f"; gate_km={gate_km!r} is smaller than their spread"
+                            if rule == "gate" else ""))
     return CombinedEstimate(est[keep].mean(0), keep)

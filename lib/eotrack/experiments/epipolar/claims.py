@@ -373,21 +373,25 @@ def status_fig5(m: dict) -> Status:
 
 @evaluator("epipolar.fig6", cases=[
     (dict(mc_vs_analytic=0.01, paper_gap=0.02), R_),
-    (dict(mc_vs_analytic=0.01, paper_gap=0.40), N_),
-    (dict(mc_vs_analytic=0.05, paper_gap=0.02), N_)])
+    (dict(mc_vs_analytic=0.01, paper_gap=0.40), N_)])
 def status_fig6(m: dict) -> Status:
-    """MC within 2 points of its expectation and the paper within 3 points of the MC."""
-    return R_ if m["mc_vs_analytic"] < 0.02 and m["paper_gap"] < 0.03 else N_
+    """The paper within 3 points of our MC. Our MC must agree with its own expectation within
+    2 points: if it does not, that is a defect of our simulation, not a finding about the
+    paper, and ``RuntimeError`` is raised instead of a status."""
+    if not m["mc_vs_analytic"] < 0.02:
+        raise RuntimeError(f"Fig. 6: our Monte Carlo is {m['mc_vs_analytic']:.3f} from its own "
+                           "binomial expectation (> 0.02): a simulation defect, not a result")
+    return R_ if m["paper_gap"] < 0.03 else N_
 
 
 @evaluator("epipolar.table5", cases=[
-    (dict(displayed_err_km=[1.0, 2.0], share_ok=0.8, tol_km=3.0), R_),
-    (dict(displayed_err_km=[1.0, 5.0], share_ok=0.8, tol_km=3.0), N_),
-    (dict(displayed_err_km=[1.0, 2.0], share_ok=0.3, tol_km=3.0), N_)])
+    (dict(share_ok_ci=(0.55, 0.75)), R_),
+    (dict(share_ok_ci=(0.40, 0.62)), N_),
+    (dict(share_ok_ci=(0.0, 0.013)), N_)])
 def status_table5(m: dict) -> Status:
-    """Both objects within the tolerance in the displayed draw and in ≥ half the draws."""
-    ok = all(e <= m["tol_km"] for e in m["displayed_err_km"]) and m["share_ok"] >= 0.5
-    return R_ if ok else N_
+    """Both objects within the tolerance in a majority of the draws: the 95 % Wilson interval
+    of that share has its lower end >= 0.5."""
+    return R_ if m["share_ok_ci"][0] >= 0.5 else N_
 
 
 @evaluator("epipolar.fig8", cases=[
@@ -454,13 +458,18 @@ def table3_measure(recovered, n_objects: int) -> dict:
 def placement_study(scenarios: dict[str, Scenario], errors: ErrorConfig = _ERRORS,
                     thresholds=None, threshold: float = 10.0, n_draws: int = 100, *,
                     band: tuple[float, float] | None = None, seed: int = 20190401,
-                    runner: TrialRunner | None = None) -> pd.DataFrame:
-    """Figs. 4–5 and Table 3 statistics on other object placements (same seeds for each, so
-    the same errors and false targets): recall and precision at ``threshold``, their best
-    values inside Fig. 5's band (default the paper's 8–12 px), the best threshold of the
-    sweep, Table 3's objects recovered with the intervals of its criterion and the status that
-    criterion would give on that placement (exploratory: the scored status is the one of our
-    scene)."""
+                    runner: TrialRunner | None = None, boot_seed: int = 0) -> pd.DataFrame:
+    """Figs. 4–5, Table 3, Table 5 and Fig. 8 statistics on other object placements (same
+    seeds for each, so the same errors and false targets; with the main run's seed and count
+    the numbers of that scene are the main run's): recall and precision at ``threshold``,
+    their best values inside Fig. 5's band (default the paper's 8–12 px), the best threshold
+    of the sweep, Table 3's objects recovered with the intervals of its criterion and the
+    status that criterion would give on that placement (exploratory: the scored status is the
+    one of our scene); per triangulated object (GEO1, GEO5) the share of draws in which it has
+    a summary row and the median largest coordinate error over those draws with a 95 %
+    bootstrap interval (2,000 resamples); Fig. 8's share of draws in which both errors lie
+    below a tenth of the scene's own GEO1–GEO5 separation (a missing row counts as not
+    resolved), with its 95 % Wilson interval."""
     if not isinstance(scenarios, dict) or not scenarios:
         raise TypeError("scenarios must be a non-empty dict of name -> Scenario")
     th = np.arange(0.5, 20.01, 0.5) if thresholds is None else np.asarray(thresholds, float)
@@ -482,6 +491,23 @@ def placement_study(scenarios: dict[str, Scenario], errors: ErrorConfig = _ERROR
                          np.sum([o["false"] for o in out], 0),
                          float(sum(o["n_true"] for o in out)), th)
         m = table3_measure([o["objects_recovered"] for o in out], len(sc.names))
+        tri = np.stack([np.asarray(o["tri_err_km"], float) for o in out])
+        sep = float(np.linalg.norm(sc.objects_km[0] - sc.objects_km[4]))
+        with np.errstate(invalid="ignore"):
+            k8 = int(np.sum(np.all(tri < sep / 10, axis=1)))
+        brng = np.random.default_rng(boot_seed)
+        tri_cols = {}
+        for j, obj in enumerate(("GEO1", "GEO5")):
+            v = tri[:, j][np.isfinite(tri[:, j])]
+            tri_cols[f"{obj} has a row (share)"] = len(v) / len(tri)
+            if len(v):
+                med = np.median(brng.choice(v, (2000, len(v))), axis=1)
+                tri_cols[f"{obj} median max|Δ| (km)"] = float(np.median(v))
+                tri_cols[f"{obj} median, 95 % bootstrap"] = "{:.0f}–{:.0f}".format(
+                    *np.quantile(med, [0.025, 0.975]))
+            else:
+                tri_cols[f"{obj} median max|Δ| (km)"] = np.nan
+                tri_cols[f"{obj} median, 95 % bootstrap"] = "—"
         rows[name] = {
             f"correct of true at L = {threshold:g}": float(sw.accuracy[k_l[0]]),
             f"correct of associated at L = {threshold:g}": float(1 - sw.false_rate[k_l[0]]),
@@ -493,7 +519,12 @@ def placement_study(scenarios: dict[str, Scenario], errors: ErrorConfig = _ERROR
             "mean, 95 % t": "{:.2f}–{:.2f}".format(*m["mean_recovered_ci"]),
             "all nine (share)": m["all_nine_share"],
             "all nine, 95 % Wilson": "{:.3f}–{:.3f}".format(*m["all_nine_ci"]),
-            "Table 3 status": str(status_table3(m))}
+            "Table 3 status": str(status_table3(m)),
+            **tri_cols,
+            "GEO1–GEO5 separation (km)": sep,
+            "Fig. 8: both below separation/10": k8 / len(tri),
+            "Fig. 8, 95 % Wilson": "{:.3f}–{:.3f}".format(
+                *binomial_interval(k8, len(tri), confidence=0.95))}
     return pd.DataFrame(rows).T
 
 
@@ -750,8 +781,11 @@ def score(scen: Scenario, draw: DisplayedDraw, mc: MonteCarlo, res6: dict, *,
     tables["Table 5"], est_all = table5(scen, draw)
     disp_err = [float(np.abs(e["combined"] - e["truth"]).max()) for e in est_all.values()]
     tri = mc.stack("tri_err_km")
-    m5t = {"displayed_err_km": disp_err, "share_ok": float(np.mean(np.all(tri <= tol, axis=1))),
-           "tol_km": tol}
+    with np.errstate(invalid="ignore"):
+        k5 = int(np.sum(np.all(tri <= tol, axis=1)))  # a missing row counts as a failure
+    m5t = {"displayed_err_km": disp_err, "share_ok": k5 / n_draws, "tol_km": tol,
+           "share_ok_ci": tuple(float(x) for x in binomial_interval(k5, n_draws,
+                                                                    confidence=0.95))}
     med = np.nanmedian(tri, 0)
     base = [float(np.linalg.norm(scen.sat_km[a] - scen.sat_km[b])) for a, b in PAIRS
             if np.any(scen.visible[a] & scen.visible[b])]
@@ -760,7 +794,8 @@ def score(scen: Scenario, draw: DisplayedDraw, mc: MonteCarlo, res6: dict, *,
     add("epipolar.table5", status_table5(m5t),
         f"displayed draw: max coordinate error GEO1 {disp_err[0]:.1f} km, GEO5 "
         f"{disp_err[1]:.1f} km; over {n_draws} draws median {med[0]:.1f} / {med[1]:.1f} km, "
-        f"both within {tol:g} km in {100 * m5t['share_ok']:.0f} %",
+        f"both within {tol:g} km in {100 * m5t['share_ok']:.0f} % (95 % "
+        f"{100 * m5t['share_ok_ci'][0]:.0f}–{100 * m5t['share_ok_ci'][1]:.0f} %)",
         "with attitude errors up to 1′ (2.9e-4 rad) a line of sight from "
         f"{rng_km:,.0f} km misses by up to ~{rng_km * 2.9e-4:.0f} km, and the short baselines "
         f"(sensors {min(base):,.0f}–{max(base):,.0f} km apart) stretch that along the line of "

@@ -457,8 +457,8 @@ def plot_fig6(running: dict, analytic: dict, paper: dict | None = None, *, ax=No
         ax.set_ylim(0, 105)
         order = np.argsort(vals)
         ytext = np.asarray(vals, float)[order].copy()
-        for i in range(1, len(ytext)):  # spread the labels at least 10 % of the axis apart
-            ytext[i] = max(ytext[i], ytext[i - 1] + 10.5)
+        for i in range(1, len(ytext)):  # spread the labels 7.5 % of the axis apart
+            ytext[i] = max(ytext[i], ytext[i - 1] + 7.5)
         for i, yt in zip(order, ytext):
             Lp = paper["threshold_px"][i]
             ax.text(0.72 * n, yt, f"paper, L = {Lp:g}: {vals[i]:.0f} % ", ha="right",
@@ -518,11 +518,13 @@ def plot_fig8(scenario: Scenario, estimates: dict[str, dict], *, ax=None,
 
 
 
-def plot_gate_study(df: pd.DataFrame, *, ax=None, reading: str | None = None):
+def plot_gate_study(df: pd.DataFrame, *, ax=None, reading: str | None = None,
+                    legend: bool = True):
     """Best threshold and error-budget gate versus attitude error.
 
     ``reading`` ("bound" or "rms") says how the attitude figure is read; by default it comes
-    from ``df.attrs["reading"]`` (set by :func:`~.trials.gate_study`).
+    from ``df.attrs["reading"]`` (set by :func:`~.trials.gate_study`). ``legend=False`` leaves
+    the legend to the caller (one shared ``legend_outside(fig, where="below")`` for panels).
     """
     reading = reading if reading is not None else df.attrs.get("reading", "bound")
     if reading not in ("bound", "rms"):
@@ -536,7 +538,8 @@ def plot_gate_study(df: pd.DataFrame, *, ax=None, reading: str | None = None):
     ax.set_xlabel(f"attitude error per angle, {what} (arcmin)")
     ax.set_ylabel("threshold (px)")
     ax.set_title(f"Best L and gate, attitude as {reading}", fontsize=10)
-    ax.legend(fontsize=8)
+    if legend:
+        legend_outside(ax, where="below", ncol=2)
     return ax
 
 

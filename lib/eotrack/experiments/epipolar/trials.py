@@ -391,11 +391,12 @@ def scenario_trial(rng: np.random.Generator, scenario: Scenario, errors: ErrorCo
 
 def placement_trial(rng: np.random.Generator, scenario: Scenario, errors: ErrorConfig,
                     thresholds: np.ndarray, nominal_px: float = 10.0) -> dict:
-    """One draw of the lighter study used to compare object placements: the Fig. 5 sweep counts
-    and the Table 3 statistic (objects recovered, paper rule at ``nominal_px``).
+    """One draw of the lighter study used to compare object placements: the Fig. 5 sweep counts,
+    the Table 3 statistic (objects recovered, paper rule at ``nominal_px``) and the Table 5 /
+    Fig. 8 triangulation errors of GEO1 and GEO5 (NaN where the object has no row).
 
     Draws the observation exactly as :func:`scenario_trial` does (one child seed), so the same
-    seed gives the same errors and false targets in both.
+    seed and count give the same draws, and the same numbers, as the main Monte Carlo.
     """
     check_generator(rng)
     child = int(rng.integers(2**63))
@@ -404,7 +405,8 @@ def placement_trial(rng: np.random.Generator, scenario: Scenario, errors: ErrorC
     correct, false, n_true = sweep_counts(obs, thresholds, distances=dists)
     rows = summary_rows(obs, associate_observation(obs, nominal_px, distances=dists))
     return {"correct": correct, "false": false, "n_true": n_true,
-            "objects_recovered": objects_recovered(obs, rows, scenario)}
+            "objects_recovered": objects_recovered(obs, rows, scenario),
+            "tri_err_km": triangulation_errors(obs, rows, scenario)}
 
 
 def _mean_true_distance(obs: Observation, matches) -> np.ndarray:
