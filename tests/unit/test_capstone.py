@@ -118,12 +118,17 @@ def test_velocity_gate_follows_pixel_scale_and_rates():
 
 
 def test_inclined_object_keeps_its_recall_at_5_arcsec_per_px():
-    # issue #30: with the old fixed 0-0.5 px/s gate, 14128's recall fell to 0.58 at 5″/px
+    # issue #30: with the old fixed 0-0.5 px/s gate, 14128's recall fell to 0.58 at 5″/px.
+    # A 0.36° field needs a deeper catalogue (G ≤ 13) and shorter exposures (0.5 s: a 2-s
+    # exposure trails the stars 6 px at 5″/px and the plate solution degrades to arcseconds);
+    # the target is made 1.5 mag brighter to keep its S/N.
     cfg = C.with_changes(norad_ids=(14128,), cluster=(), pixel_scale_arcsec=5.0,
                          astrometry_mag=13.0, star_limit_mag=13.5, cloud_frames=(),
+                         exposure_s=0.5, target_mag=11.0,
                          night_start_utc="2006-03-25T07:00:00", night_hours=2.0)
     _, res = _bursts(cfg, keep=lambda b: b.target_flux[0].min() > 0, limit=6)
-    assert len(res) == 6 and np.mean([r.solved.mean() for r in res]) > 0.8
+    assert len(res) == 6 and np.mean([r.solved.mean() for r in res]) >= 0.9
+    assert max(np.nanmax(r.plate_err_arcsec) for r in res) < 0.3 * 5.0
     found = [any(t["true_obj"] == 0 for t in r.tracks) for r in res]
     assert np.mean(found) >= 5 / 6
 
@@ -183,8 +188,7 @@ def test_bad_input_clouded_frame_and_unresolved_objects_do_not_stop_the_night():
 
 
 def test_stage_extraction_no_targets():
-    cfg = C.with_changes(QUICK, target_mag=30.0, night_hours=2.0, night_start_utc=
-                         "2006-03-25T06:35:00")
+    cfg = C.with_changes(QUICK, target_mag=30.0)
     with pytest.raises(ValueError, match=r"stage 'extraction': no object detected"):
         C.run_night(cfg)
     res = C.run_night(cfg, strict=False)
@@ -226,7 +230,7 @@ def test_quick_night_serial_equals_local_cluster(quick_night):
     import logging
 
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
-                                  dashboard_address=None, silence_logs=logging.ERROR) as cl, \
+                                  dashboard_address=":0", silence_logs=logging.ERROR) as cl, \
             distributed.Client(cl) as cli:
         dask = C.run_night(QUICK, runner=TrialRunner(scheduler=cli, progress=False))
     a = quick_night.budget["value"].to_numpy(float)
