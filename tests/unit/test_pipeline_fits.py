@@ -85,10 +85,11 @@ def test_missing_header_keys_name_the_file(tmp_path, drop, match):
 def test_date_obs_alone_is_the_start_of_the_exposure(tmp_path):
     p = _broken(tmp_path, "DATE-AVG")
     assert abs((read_fits(p)[0].time - sim().frames[0].time).to_value(u.s)) < 1e-3
-    with fits.open(p, mode="update") as h:
-        h[0].header["DATE-OBS"] = "yesterday"
-    with pytest.raises(FitsFrameError, match="ISO 8601"):
-        read_fits(p)
+    for bad in ("yesterday", "2026-03-20"):
+        with fits.open(p, mode="update") as h:
+            h[0].header["DATE-OBS"] = bad
+        with pytest.raises(FitsFrameError, match="ISO 8601"):
+            read_fits(p)
     with pytest.raises(FileNotFoundError, match=r"nothing\.fits"):
         read_fits(tmp_path / "nothing.fits")
 

@@ -193,11 +193,14 @@ def _time(hdr: fits.Header, path: str) -> tuple[Time, float]:
         raise FitsFrameError(f"{path}: TIMESYS {hdr['TIMESYS']!r} is not a supported time scale")
     for key, shift in (("DATE-AVG", 0.0), ("DATE-OBS", exp / 2)):
         if key in hdr and str(hdr[key]).strip():
+            val = str(hdr[key]).strip()
             try:
-                t = Time(str(hdr[key]).strip(), format="isot", scale=scale)
+                if "T" not in val:
+                    raise ValueError("no time of day")
+                t = Time(val, format="isot", scale=scale)
             except ValueError as exc:
-                raise FitsFrameError(f"{path}: {key} {hdr[key]!r} is not an ISO 8601 time "
-                                     "(YYYY-MM-DDThh:mm:ss[.sss])") from exc
+                raise FitsFrameError(f"{path}: {key} {hdr[key]!r} is not an ISO 8601 date and "
+                                     "time (YYYY-MM-DDThh:mm:ss[.sss])") from exc
             return (t + shift * u.s).utc, exp
     raise FitsFrameError(f"{path}: no observation time — the header has no DATE-OBS (start of "
                          "the exposure, ISO 8601 UTC) or DATE-AVG")
