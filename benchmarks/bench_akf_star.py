@@ -1,6 +1,7 @@
 """Benchmark for paper akf_star: Kalman filtering vs FilterPy, star extraction vs SEP.
 
-Run: ``.venv/bin/python benchmarks/bench_akf_star.py`` (≈ 30 s). Prints medians of repeated
+Run: ``.venv/bin/python benchmarks/bench_akf_star.py [--out FILE]`` (≈ 30 s; notebook 05 shows
+``papers_repro/akf_star/bench_akf_star.txt``). Prints medians of repeated
 timings (interleaved, so machine load hits both sides alike), ratios and accuracies.
 """
 
@@ -155,6 +156,6 @@ def bench_extraction() -> None:
 
 
 if __name__ == "__main__":
-    bench_filter_step()
-    bench_batch()
-    bench_extraction()
+    from bench_extraction import run_recorded
+
+    run_recorded((bench_filter_step, bench_batch, bench_extraction), "bench_akf_star.py")

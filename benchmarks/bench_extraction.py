@@ -1,6 +1,7 @@
 """Benchmark: the sky extractor (``extract_stars``, default method) against SEP 1.4.1.
 
-Run: ``.venv/bin/python benchmarks/bench_extraction.py`` (≈ 1–2 min). Reports
+Run: ``.venv/bin/python benchmarks/bench_extraction.py [--out FILE]`` (≈ 1–2 min; notebook 05
+shows ``papers_repro/akf_star/bench_extraction.txt``, written with ``--out``). Reports
 
 * completeness at equal false detections (threshold sweeps of both, ours interpolated at SEP's
   false-detection counts) on a simulated crowded field (blends, saturated stars, sky gradient
@@ -218,10 +219,45 @@ def _on_mask(xy: np.ndarray, mask: np.ndarray) -> np.ndarray:
     return near
 
 
+class _Tee:
+    """stdout that also writes to a file (``--out``: the record notebook 05's closing note
+    shows)."""
+
+    def __init__(self, stream, fh) -> None:
+        self.stream, self.fh = stream, fh
+
+    def write(self, s: str) -> int:
+        self.fh.write(s)
+        return self.stream.write(s)
+
+    def flush(self) -> None:
+        self.fh.flush()
+        self.stream.flush()
+
+
+def run_recorded(benches, name: str, argv: list[str] | None = None) -> None:
+    """Run ``benches`` (functions that print); ``--out FILE`` also writes their output to FILE
+    with a header giving the date, cores and load (the record notebook 05 shows)."""
+    import argparse
+    import contextlib
+    import datetime
+    import os
+    import sys
+
+    ap = argparse.ArgumentParser(description=name)
+    ap.add_argument("--out", help="also write the output to this file (with date and load)")
+    args = ap.parse_args(argv)
+    with contextlib.ExitStack() as stack:
+        if args.out:
+            fh = stack.enter_context(open(args.out, "w", encoding="utf-8"))
+            stack.enter_context(contextlib.redirect_stdout(_Tee(sys.stdout, fh)))
+            print(f"# benchmarks/{name}, run {datetime.datetime.now(datetime.UTC):%Y-%m-%d %H:%M} "
+                  f"UTC on {os.cpu_count()} cores, load average {os.getloadavg()[0]:.1f} at the "
+                  "start (times: medians of interleaved repeats, so load hits both sides)")
+        for bench in benches:
+            bench()
+
+
 if __name__ == "__main__":
-    bench_noise()
-    bench_cosmic()
-    bench_crowded()
-    bench_real()
-    bench_centroids()
-    bench_time()
+    run_recorded((bench_noise, bench_cosmic, bench_crowded, bench_real, bench_centroids,
+                  bench_time), "bench_extraction.py")

@@ -4,8 +4,10 @@ simulated on a panel control, the same sequences as the ablation and as a fresh 
 from __future__ import annotations
 
 import numpy as np
+import pandas as pd
 import pytest
 from eotrack.experiments import akf_star as A
+from eotrack.montecarlo import TrialRunner
 from eotrack.tracking.kalman import ConfidenceConfig
 
 N_FRAMES = 30
@@ -137,3 +139,75 @@ def test_curves_by_scenario_one_panel_per_scenario_and_bad_kind():
     plt.close(fig)
     with pytest.raises(ValueError, match="kind"):
         A.plot_curves_by_scenario(res, "median")
+
+
+# ---- the committed run's stored study (ablation_study.npz) --------------------------------
+
+@pytest.fixture(scope="module")
+def tiny_study():
+    cfg = A.AblationConfig(n_seeds=1, n_frames=20)
+    return A.run_study(cfg, runner=TrialRunner(progress=False), n_consistency=1,
+                       n_sensitivity=1, n_centroid_frames=2, explore_seeds=(0,))
+
+
+def test_study_round_trip(tiny_study, tmp_path):
+    path = tmp_path / A.STUDY_FILE
+    A.write_study(path, tiny_study)
+    back = A.read_study(path)
+    a, b = tiny_study.ablation, back.ablation
+    assert b.config == a.config and b.scenarios == a.scenarios
+    assert np.array_equal(a.errors, b.errors) and np.array_equal(a.modes, b.modes)
+    assert list(b.extra) == list(a.extra)
+    for name in a.extra:
+        assert np.array_equal(a.extra[name].errors, b.extra[name].errors)
+        assert b.extra[name].config == a.extra[name].config
+    for name, t in tiny_study.tables.items():
+        pd.testing.assert_frame_equal(t, back.tables[name], check_dtype=False, check_exact=False)
+    # the stored sequences re-filtered by this code give the stored errors (BEAK-ST included),
+    # the 25-frame occlusion too, and the reader's session simulates nothing
+    for sc in a.scenarios:
+        e_old = tiny_study.session.errors(sc, seed=0)
+        e_new = back.session.errors(sc, seed=0)
+        assert all(np.allclose(e_old[v], e_new[v], atol=1e-4) for v in A.VARIANTS), sc
+    e_old = tiny_study.session.errors("cloud", seed=0, occlusion_frames=25)
+    e_new = back.session.errors("cloud", seed=0, occlusion_frames=25)
+    assert all(np.allclose(e_old[v], e_new[v]) for v in A.VARIANTS)
+    assert back.session.n_simulated == 0
+    assert A.claim_results(b)[0].status == A.claim_results(a)[0].status
+
+
+def test_study_refuses_a_stale_or_missing_file(tiny_study, tmp_path):
+    import dataclasses
+
+    with pytest.raises(FileNotFoundError, match=r"eotrack\.repro akf_star"):
+        A.read_study(tmp_path / "none.npz")
+    stale = dataclasses.replace(tiny_study.ablation,
+                                config=dataclasses.replace(tiny_study.ablation.config,
+                                                           gate_px=12.0))
+    path = tmp_path / "stale.npz"
+    A.write_study(path, dataclasses.replace(tiny_study, ablation=stale))
+    with pytest.raises(ValueError, match="gate_px"):
+        A.read_study(path)
+
+
+def test_run_study_bad_input():
+    with pytest.raises(TypeError, match="cfg"):
+        A.run_study("default")
+    with pytest.raises(ValueError, match="explore_seeds"):
+        A.run_study(A.AblationConfig(n_seeds=1, n_frames=20), explore_seeds=(3,))
+
+
+def test_add_measurements_bad_input(tiny_study):
+    s = tiny_study.session
+    with pytest.raises(TypeError, match="meas"):
+        s.add_measurements("cloud", 0, 10, "x")
+    m = s.measurements("cloud", seed=0)
+    short = dataclasses_replace_truth(m)
+    with pytest.raises(ValueError, match="frames"):
+        s.add_measurements("cloud", 0, 10, short)
+
+
+def dataclasses_replace_truth(m):
+    import dataclasses
+
+    return dataclasses.replace(m, truth=m.truth[:5])
