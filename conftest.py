@@ -7,8 +7,10 @@ Which worker ends last decides the wall time, so the files are handed out longes
 
 The seconds per file come from ``tests/file_durations.json``, written by a run with
 ``EOTRACK_WRITE_DURATIONS=1`` (``make durations``): a measurement of this machine, committed, so a
-fresh clone orders its first run the same way. A file it does not list counts as 1 s. The order
-changes only the schedule, never which tests run.
+fresh clone orders its first run the same way. A notebook it does not list is estimated from
+``notebooks/execution_times.json`` (scaled to an idle machine by the load it was executed at), a
+paper test file counts as 20 s, any other file as 1 s. The order changes only the schedule, never
+which tests run.
 """
 
 from __future__ import annotations
@@ -29,7 +31,7 @@ def _file_of(item: pytest.Item) -> str:
     return Path(str(item.fspath)).resolve().relative_to(ROOT).as_posix()
 
 
-def _known() -> dict[str, float]:
+def _measured() -> dict[str, float]:
     try:
         data = json.loads(DURATIONS.read_text())
     except (OSError, ValueError):
@@ -37,16 +39,43 @@ def _known() -> dict[str, float]:
     return {k: float(v) for k, v in data.get("seconds", {}).items()}
 
 
+def _notebook_estimates() -> dict[str, float]:
+    """Seconds per notebook from ``notebooks/execution_times.json`` (written when a notebook is
+    executed), scaled to an idle machine by the load it was measured at."""
+    try:
+        data = json.loads((ROOT / "notebooks" / "execution_times.json").read_text())
+    except (OSError, ValueError):
+        return {}
+    out = {}
+    for stem, rec in data.items():
+        cores = float(rec.get("cores", 2) or 2)
+        busy = max(1.0, float(rec.get("load", cores) or cores) / cores)
+        folder = "notebooks/solutions" if stem.endswith("_solutions") else "notebooks"
+        out[f"{folder}/{stem}.ipynb"] = float(rec.get("seconds", 1.0)) / busy
+    return out
+
+
+def _known() -> dict[str, float]:
+    """Measured seconds per file where known; notebook estimates; the paper tests next."""
+    est = _notebook_estimates()
+    est.update(_measured())
+    return est
+
+
+def _estimate(known: dict[str, float], path: str) -> float:
+    if path in known:
+        return known[path]
+    return 20.0 if path.startswith("tests/papers/") else 1.0
+
+
 def pytest_collection_modifyitems(session: pytest.Session, config: pytest.Config,
                                   items: list[pytest.Item]) -> None:
     known = _known()
-    if not known:
-        return
     first_seen: dict[str, int] = {}
     for i, item in enumerate(items):
         first_seen.setdefault(_file_of(item), i)
     # stable within a file (cell order matters to nbval); files by measured time, longest first
-    items.sort(key=lambda it: (-known.get(_file_of(it), 1.0), first_seen[_file_of(it)]))
+    items.sort(key=lambda it: (-_estimate(known, _file_of(it)), first_seen[_file_of(it)]))
 
 
 def pytest_runtest_logreport(report: pytest.TestReport) -> None:
@@ -59,7 +88,7 @@ def pytest_sessionfinish(session: pytest.Session, exitstatus: int) -> None:
         return
     if hasattr(session.config, "workerinput"):  # xdist workers: the controller writes
         return
-    old = _known()
+    old = _measured()
     old.update({k: round(v, 1) for k, v in _seconds.items()})
     DURATIONS.write_text(json.dumps(
         {"about": "seconds per test file on the 2-core reference machine (written by "
