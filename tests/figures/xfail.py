@@ -13,7 +13,6 @@ XFAIL: dict[str, str] = {
     "case:track_init_hough.plot_explore": "P04",  # legend-covers-data 2, small-text 38, title 1, t
     "nocase:track_init_hough.plot_scene_tracks": "P04",  # no lint case yet
     # notebooks: stored before the kernel recorded the lint's verdict (2026-12-02 00:00)
-    "notebook:03_track_init_hypothesis_testing": "P03",  # not-linted
     "notebook:04_track_init_logic_hough": "P04",  # not-linted
     # the committed PNGs predate the figure fix (quick run: 0 problems); regenerate the report
     "report:akf_star/fig6_mean_tracking_error": "P05",  # too-wide 1 (committed PNG 1072 px)
