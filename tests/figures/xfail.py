@@ -10,8 +10,6 @@ before the kernel recorded the lint's verdict: re-execute it).
 
 # measured by the lint on 2026-12-01 21:25 (comment: the rules each figure still fails)
 XFAIL: dict[str, str] = {
-    "case:track_init_hough.plot_explore": "P04",  # legend-covers-data 2, small-text 38, title 1, t
-    "nocase:track_init_hough.plot_scene_tracks": "P04",  # no lint case yet
     # notebooks: stored before the kernel recorded the lint's verdict (2026-12-02 00:00)
     "notebook:04_track_init_logic_hough": "P04",  # not-linted
     # the committed PNGs predate the figure fix (quick run: 0 problems); regenerate the report
