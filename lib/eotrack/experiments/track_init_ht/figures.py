@@ -19,6 +19,7 @@ from eotrack.plotting import get_ax
 from eotrack.tracking import hypothesis as hyp
 from eotrack.tracking.initiation.base import Frame
 
+from .scenario import HIGH_PDA, LOW_PFA
 from .trials import Fig1Result, Fig2Result
 
 __all__ = [
@@ -110,6 +111,13 @@ def plot_fig1(res: Fig1Result, *, s_max: int = 12, ax: plt.Axes | None = None) -
         ok = res.mc_pda[j, sel] > 0
         ax.plot(s[ok], res.mc_pda[j, sel][ok], "o", mfc="none", color=c, ms=5)
     ax.plot([], [], "o", mfc="none", color="gray", label="Monte Carlo (pixels)")
+    # the li_fig1 decision: P_FA <= LOW_PFA from the smallest admissible S on, P_DA >= HIGH_PDA
+    ok_s = res.pfa <= LOW_PFA
+    if ok_s.any():
+        ax.axvline(float(res.s[ok_s][0]), color="0.4", lw=0.8, ls="-.",
+                   label=f"smallest S with $P_{{FA}}$ ≤ {LOW_PFA:g}")
+    ax.axhline(LOW_PFA, color="k", lw=0.8, ls=":", label=f"$P_{{FA}}$ = {LOW_PFA:g}")
+    ax.axhline(HIGH_PDA, color="0.4", lw=0.8, ls=":", label=f"$P_{{DA}}$ = {HIGH_PDA:g}")
     ax.set_ylim(1e-9, 2)
     ax.xaxis.set_major_locator(MaxNLocator(integer=True))  # S is an integer
     ax.set_xlabel("clustering threshold S")

@@ -28,6 +28,7 @@ __all__ = [
     "CLOSE_RATIO",
     "CONFIDENCE",
     "DEMO_SEED",
+    "FAIL_PDA",
     "FIG2_P_F",
     "HIGH_PDA",
     "INITIATOR_P_F",
@@ -49,7 +50,8 @@ TITLE = ("Li Z.Z., Peng S.J., Jin G., Dong N.L., *Track initiation for dim small
 #: Criterion constants of ``track_init.li_fig1`` (ours, stated in claims.toml's criterion).
 LOW_PFA = 1e-4
 HIGH_PDA = 0.9
-#: The SNR-1 reading "P_DA very close to P_FA": P_DA <= CLOSE_RATIO * P_FA (one decade).
+FAIL_PDA = 0.5
+#: P_DA / P_FA at SNR 1 reported beside the SNR-1 reading ("very close": within one decade).
 CLOSE_RATIO = 10.0
 #: Confidence of each Monte Carlo interval (claims.toml: "within its 99.9 % interval").
 CONFIDENCE = 0.999
