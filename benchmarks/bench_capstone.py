@@ -114,14 +114,18 @@ def main() -> None:
     say(f"QUICK night on a LocalCluster of 2 workers: {t_dask:.1f} s wall; serial == "
         f"LocalCluster: {same}")
     out["same_on_cluster"] = same
-    wq, cq = quick_notebook()
-    say(f"notebook 07 with QUICK = True (its code as a script): {wq:.1f} s wall, {cq:.1f} s CPU;"
-        f" target < 30 s: wall {verdict(wq, 30)}, CPU {verdict(cq, 30)}")
-    out["quick_notebook"] = {"wall_s": wq, "cpu_s": cq}
-    out["load_end"] = os.getloadavg()[0]
     d = papers_repro_dir() / "capstone"
     p = S.write_stored(d / S.STORED_FILE, out)
     say(f"wrote {p.relative_to(ROOT)}")
+    try:
+        wq, cq = quick_notebook()
+        say(f"notebook 07 with QUICK = True (its code as a script): {wq:.1f} s wall, {cq:.1f} s "
+            f"CPU; target < 30 s: wall {verdict(wq, 30)}, CPU {verdict(cq, 30)}")
+        out["quick_notebook"] = {"wall_s": wq, "cpu_s": cq}
+    except subprocess.CalledProcessError as e:
+        say(f"notebook 07 with QUICK = True failed: {e.stderr.decode()[-500:]}")
+    out["load_end"] = os.getloadavg()[0]
+    S.write_stored(p, out)
     (d / "bench_capstone.txt").write_text("\n".join(LINES) + "\n")
 
 
