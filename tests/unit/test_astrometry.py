@@ -205,6 +205,22 @@ def test_stars_split_along_their_trails_are_refused_not_solved_wrong():
     assert ei.value.reason == "ambiguous_match"
 
 
+def test_a_plate_scale_error_is_named_or_searched():
+    rng = np.random.default_rng(14)
+    xy, cat, wg, wt, _ = scene(rng, *FIELD, err_arcsec=100.0)
+    wrong = wg.deepcopy()
+    wrong.wcs.cd = wg.wcs.cd * 1.04          # the header's scale 4 % too large
+    wrong.wcs.set()
+    with pytest.raises(PlateSolveError, match="plate scale"):
+        solve_plate(xy, cat, wrong)
+    sol = solve_plate(xy, cat, wrong, max_scale_error=0.05)
+    assert sol.scale_factor == pytest.approx(1.04, abs=0.01)
+    e = wcs_error_arcsec(sol.wcs, wt, 256, rng)
+    assert np.sqrt(np.mean(e ** 2)) < 2.5 * expected_error_arcsec(0.1, 15.0, sol.n_matched)
+    with pytest.raises(ValueError, match="max_scale_error"):
+        solve_plate(xy, cat, wg, max_scale_error=0.5)
+
+
 def test_too_few_stars_and_clouds_raise_with_reason():
     rng = np.random.default_rng(7)
     xy, cat, wg, _, _ = scene(rng, *FIELD)

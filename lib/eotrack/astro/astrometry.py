@@ -3,8 +3,9 @@
 A station knows only where its mount *believes* it points — off by up to a few arcminutes and a
 little in roll. It gets its angles from the stars: detected centroids are matched to the Gaia
 extract (:mod:`eotrack.astro.catalog`) starting from that believed pointing, and a gnomonic (TAN)
-World Coordinate System is fitted to the matched pairs with astropy
-(:func:`astropy.wcs.utils.fit_wcs_from_points`), sigma-clipped.
+World Coordinate System is fitted to the matched pairs, sigma-clipped — by default in closed
+form (the same model and, to ``O(ξ²)``, the same objective as astropy's
+:func:`astropy.wcs.utils.fit_wcs_from_points`, which ``fitter="astropy"`` calls instead).
 
 :func:`solve_plate` works in three steps, all vectorised (k-d trees, batched linear algebra):
 
@@ -325,6 +326,9 @@ class PlateSolution:
     sigma_axis_arcsec
         Per-axis σ of one star's residual, unbiased for the fit's 6 parameters:
         ``rms · √(n / (2n − 6))``.
+    scale_factor
+        The vote's best grid point of the plate-scale search (observed / believed pixel
+        distances; 1 when ``max_scale_error = 0``).
     """
 
     wcs: WCS
@@ -338,6 +342,7 @@ class PlateSolution:
     n_candidates: int
     fit_cov: np.ndarray
     sigma_axis_arcsec: float
+    scale_factor: float = 1.0
 
     @property
     def pixel_scale_arcsec(self) -> float:
@@ -456,25 +461,27 @@ def _one_to_one(det: np.ndarray, pred: np.ndarray, radius: float) -> tuple[np.nd
     return i[mutual], j[mutual]
 
 
-def _rotate(p: np.ndarray, centre: np.ndarray, ang: float) -> np.ndarray:
-    c, s = np.cos(ang), np.sin(ang)
+def _rotate(p: np.ndarray, centre: np.ndarray, ang: float, scale: float = 1.0) -> np.ndarray:
+    """Rotate by ``ang`` (rad) and scale by ``scale`` about ``centre``."""
+    c, s = scale * np.cos(ang), scale * np.sin(ang)
     q = p - centre
     return np.column_stack([c * q[:, 0] - s * q[:, 1], s * q[:, 0] + c * q[:, 1]]) + centre
 
 
-def _vote(det: np.ndarray, pred: np.ndarray, centre: np.ndarray, rolls: np.ndarray,
-          max_off: float, radius: float) -> tuple[int, float, np.ndarray, float, int, int]:
-    """Best (votes, roll, offset, expected chance votes, pairs, runner-up votes) of the vote.
+def _vote(det: np.ndarray, pred: np.ndarray, centre: np.ndarray, grid: np.ndarray,
+          max_off: float, radius: float
+          ) -> tuple[int, tuple[float, float], np.ndarray, float, int, int]:
+    """Best (votes, (roll, scale), offset, expected chance votes, pairs, runner-up votes).
 
-    Ties between roll grid points are broken by the spread of the winning cluster. The
-    runner-up is the largest peak of the same roll farther than ``1.25 radius`` from the
-    winner.
+    ``grid`` lists the (roll, scale) points searched. Ties between grid points are broken by
+    the spread of the winning cluster. The runner-up is the largest peak of the same grid
+    point farther than ``1.25 radius`` from the winner.
     """
     tree_d = cKDTree(det)
-    best = (0, 0.0, np.zeros(2), 0.0, 0, 0)
+    best: tuple = (0, (0.0, 1.0), np.zeros(2), 0.0, 0, 0)
     best_score = -np.inf
-    for ang in rolls:
-        pr = _rotate(pred, centre, ang)
+    for ang, sc in grid:
+        pr = _rotate(pred, centre, ang, sc)
         pairs = tree_d.sparse_distance_matrix(cKDTree(pr), max_off, output_type="ndarray")
         if len(pairs) == 0:
             continue
@@ -496,15 +503,17 @@ def _vote(det: np.ndarray, pred: np.ndarray, centre: np.ndarray, rolls: np.ndarr
             ring = len(tree_o.query_ball_point(off[k], 5.0 * radius)) - n
             far = np.linalg.norm(off - centre_off, axis=1) > 1.25 * radius
             second = int(counts[far].max()) if far.any() else 0
-            best = (n, float(ang), centre_off, max(lam_disc, ring / 24.0), len(off), second)
+            best = (n, (float(ang), float(sc)), centre_off, max(lam_disc, ring / 24.0),
+                    len(off), second)
     return best
 
 
 def solve_plate(xy_px: Any, catalog_radec_deg: Any, wcs_guess: WCS, *,
                 image_shape: tuple[int, int] | None = None, match_radius_px: float = 2.0,
                 max_offset_arcsec: float = 600.0, max_roll_deg: float = 1.0,
-                min_stars: int = 6, clip_sigma: float = 3.0, max_iter: int = 5,
-                max_vote_stars: int = 150, fitter: str = "linear") -> PlateSolution:
+                max_scale_error: float = 0.0, min_stars: int = 6, clip_sigma: float = 3.0,
+                max_iter: int = 5, max_vote_stars: int = 150,
+                fitter: str = "linear") -> PlateSolution:
     """Match detections to catalogue stars from a believed pointing and fit a TAN WCS.
 
     Parameters
@@ -519,7 +528,8 @@ def solve_plate(xy_px: Any, catalog_radec_deg: Any, wcs_guess: WCS, *,
         pointing error.
     wcs_guess
         The mount's believed pointing as a celestial WCS (e.g. :func:`wcs_from_camera` of the
-        believed attitude). Its plate scale must be right to about 1 %.
+        believed attitude). Its plate scale must be right to about 1 %, or searched with
+        ``max_scale_error``.
     image_shape
         ``(ny, nx)``; catalogue stars predicted farther than the largest pointing error outside
         it are ignored. Default ``wcs_guess.pixel_shape`` or the detections' bounding box.
@@ -532,6 +542,10 @@ def solve_plate(xy_px: Any, catalog_radec_deg: Any, wcs_guess: WCS, *,
     max_roll_deg
         Largest roll error searched (deg), on a grid fine enough that the frame's corners move
         by at most ``match_radius_px`` between grid points.
+    max_scale_error
+        Largest relative error of the believed plate scale searched (e.g. 0.05 for ±5 %; a
+        focal reducer, binning or a wrong CDELT), on a grid as fine as the roll grid; 0
+        (default) trusts the believed scale to about 1 %. Each grid point costs one more vote.
     min_stars
         Fewest matched stars accepted (≥ 4: the fit has 6 parameters).
     clip_sigma
@@ -547,8 +561,8 @@ def solve_plate(xy_px: Any, catalog_radec_deg: Any, wcs_guess: WCS, *,
         ``"linear"`` (default): the TAN model (CD matrix and CRPIX, CRVAL at the frame centre)
         fitted in closed form in the tangent plane; ``"astropy"``:
         :func:`astropy.wcs.utils.fit_wcs_from_points` with the same CRVAL (the same model and,
-        to ``O(ξ²)``, the same objective — agreement to < 10⁻³ px is tested — but it is a
-        ``least_squares`` iteration about 100× slower per call).
+        to ``O(ξ²)``, the same objective — agreement to < 10⁻³ px over the frame is tested —
+        but a ``least_squares`` iteration: the whole solve is 5–10× slower).
 
     Returns
     -------
@@ -567,8 +581,9 @@ def solve_plate(xy_px: Any, catalog_radec_deg: Any, wcs_guess: WCS, *,
 
     Notes
     -----
-    Deterministic (no random numbers). Cost: one k-d tree pair search per roll grid point plus
-    a few astropy fits (each a ``scipy.optimize.least_squares`` on the matched pairs).
+    Deterministic (no random numbers). Cost: one k-d tree pair search per (roll, scale) grid
+    point, one batched LMedS over the pairs of pairs, and a few closed-form 6-parameter
+    least-squares fits (with ``fitter="astropy"``: a ``scipy.optimize.least_squares`` each).
     """
     xy = as_points(xy_px, "xy_px")
     cat = as_points(catalog_radec_deg, "catalog_radec_deg")
@@ -578,6 +593,9 @@ def solve_plate(xy_px: Any, catalog_radec_deg: Any, wcs_guess: WCS, *,
     r_match = check_positive(match_radius_px, "match_radius_px")
     max_off_as = check_positive(max_offset_arcsec, "max_offset_arcsec")
     max_roll = check_positive(max_roll_deg, "max_roll_deg", allow_zero=True)
+    max_scale = check_positive(max_scale_error, "max_scale_error", allow_zero=True)
+    if max_scale >= 0.3:
+        raise ValueError(f"max_scale_error must be < 0.3 (a relative error), got {max_scale}")
     n_min = check_int(min_stars, "min_stars", min_value=4)
     k_clip = check_positive(clip_sigma, "clip_sigma")
     n_iter = check_int(max_iter, "max_iter", min_value=1, max_value=50)
@@ -622,14 +640,17 @@ def solve_plate(xy_px: Any, catalog_radec_deg: Any, wcs_guess: WCS, *,
     centre = np.array(w0.wcs.crpix, float) - 1.0
     r_max = max(np.hypot(max(centre[0], nx - 1 - centre[0]), max(centre[1], ny - 1 - centre[1])),
                 1.0)
-    step = r_match / (2.0 * r_max)   # corners move ≤ r_match/4 from the nearest grid roll
+    step = r_match / (2.0 * r_max)   # corners move ≤ r_match/4 from the nearest grid point
     n_roll = int(np.ceil(np.radians(max_roll) / step)) if max_roll > 0 else 0
     rolls = np.linspace(-np.radians(max_roll), np.radians(max_roll), 2 * n_roll + 1) \
         if n_roll else np.zeros(1)
-    votes, roll, off, lam, n_pairs, second = _vote(xy[:n_vote], px[:n_vote], centre, rolls,
-                                                   max_off, r_match)
+    n_sc = int(np.ceil(max_scale / step)) if max_scale > 0 else 0
+    scales = 1.0 + (np.linspace(-max_scale, max_scale, 2 * n_sc + 1) if n_sc else np.zeros(1))
+    grid = np.array([(a, c) for c in scales for a in rolls])
+    votes, (roll, scale_f), off, lam, n_pairs, second = _vote(
+        xy[:n_vote], px[:n_vote], centre, grid, max_off, r_match)
     # Poisson bound on the highest chance peak over all pairs and rolls
-    n_tries = max(n_pairs, 1) * len(rolls)
+    n_tries = max(n_pairs, 1) * len(grid)
     need = max(n_min, _poisson_quantile(lam, 1e-3 / n_tries) + 1)
     if votes < n_min and votes >= _poisson_quantile(lam, 1e-3 / n_tries) + 1:
         raise PlateSolveError("too_few_matches",
@@ -642,14 +663,18 @@ def solve_plate(xy_px: Any, catalog_radec_deg: Any, wcs_guess: WCS, *,
                               f"no consistent match: the best pointing offset is shared by "
                               f"{votes} star pair(s), need {need} (chance level {lam:.1f}) — "
                               f"is the pointing error larger than {max_off_as:g}″, the roll "
-                              f"larger than {max_roll:g}°, or the frame only noise?")
+                              f"larger than {max_roll:g}°, the believed plate scale "
+                              f"({scale:.4g}″/px) off by more than "
+                              f"{max(100 * max_scale, 1):g} %, or the frame only noise?")
     if second >= max(n_min, 0.7 * votes):
         raise PlateSolveError("ambiguous_match",
                               f"ambiguous match: two pointing offsets more than "
                               f"{1.25 * r_match:g} px apart are shared by {votes} and {second} "
                               "star pairs — several detections per star (trailed or doubled "
-                              "stars split by the extractor?) or a repetitive field")
-    pred = _rotate(px, centre, roll) + off
+                              "stars split by the extractor?), a repetitive field, or the "
+                              f"believed plate scale ({scale:.4g}″/px) off by more than "
+                              f"{max(100 * max_scale, 1):g} %")
+    pred = _rotate(px, centre, roll, scale_f) + off
     i_det, j_cat = _one_to_one(xy, pred, r_match)
     n_cand = len(i_det)
     if n_cand < n_min:
@@ -659,7 +684,7 @@ def solve_plate(xy_px: Any, catalog_radec_deg: Any, wcs_guess: WCS, *,
     floor_as = 0.01 * scale
     # tangent point: the frame centre under the believed pointing corrected by the vote
     c_px = np.array([(nx - 1) / 2.0, (ny - 1) / 2.0])
-    c_guess = _rotate((c_px - off)[None], centre, -roll)[0]
+    c_guess = _rotate((c_px - off)[None], centre, -roll, 1.0 / scale_f)[0]
     tangent = tuple(float(v) for v in w0.wcs_pix2world([c_guess], 0)[0])
     radec = cat[idx]
     q_all = _gnomonic(radec, tangent)
@@ -731,7 +756,7 @@ def solve_plate(xy_px: Any, catalog_radec_deg: Any, wcs_guess: WCS, *,
     n_m = len(i_det)
     return PlateSolution(wcs, n_m, i_det, idx[j_cat], res, rms, np.asarray(off, float),
                          float(np.degrees(roll)), n_cand, np.linalg.inv(A.T @ A),
-                         rms * float(np.sqrt(n_m / max(2 * n_m - 6, 1))))
+                         rms * float(np.sqrt(n_m / max(2 * n_m - 6, 1))), float(scale_f))
 
 
 def _lmeds_inliers(xy: np.ndarray, q: np.ndarray, k_clip: float, floor_arcsec: float,

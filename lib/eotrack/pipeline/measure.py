@@ -71,7 +71,7 @@ class PipelineConfig:
         Extraction settings (:class:`eotrack.imaging.SkyConfig`).
     catalog_mag
         Faintest catalogue star used for matching (the Gaia extract is complete to G ≈ 10).
-    match_radius_px, max_offset_arcsec, max_roll_deg, min_stars, clip_sigma
+    match_radius_px, max_offset_arcsec, max_roll_deg, max_scale_error, min_stars, clip_sigma
         Plate-solution settings (:func:`eotrack.astro.astrometry.solve_plate`).
     star_radius_px
         A detection this close (px) to a catalogue star of the solved frame, or to a detection
@@ -101,6 +101,7 @@ class PipelineConfig:
     match_radius_px: float = 2.0
     max_offset_arcsec: float = 600.0
     max_roll_deg: float = 1.0
+    max_scale_error: float = 0.0
     min_stars: int = 6
     clip_sigma: float = 3.0
     star_radius_px: float = 2.5
@@ -117,6 +118,8 @@ class PipelineConfig:
         check_positive(self.match_radius_px, "match_radius_px")
         check_positive(self.max_offset_arcsec, "max_offset_arcsec")
         check_positive(self.max_roll_deg, "max_roll_deg", allow_zero=True)
+        if not check_positive(self.max_scale_error, "max_scale_error", allow_zero=True) < 0.3:
+            raise ValueError(f"max_scale_error must be < 0.3, got {self.max_scale_error}")
         check_int(self.min_stars, "min_stars", min_value=4)
         check_positive(self.clip_sigma, "clip_sigma")
         check_positive(self.star_radius_px, "star_radius_px")
@@ -253,7 +256,8 @@ def measure_frame(frame: Frame, catalog: StarCatalog | None = None, *,
     sol = solve_plate(xy, np.column_stack([cat.ra_deg, cat.dec_deg]), frame.wcs_guess,
                       image_shape=(ny, nx), match_radius_px=cfg.match_radius_px,
                       max_offset_arcsec=cfg.max_offset_arcsec, max_roll_deg=cfg.max_roll_deg,
-                      min_stars=cfg.min_stars, clip_sigma=cfg.clip_sigma)
+                      max_scale_error=cfg.max_scale_error, min_stars=cfg.min_stars,
+                      clip_sigma=cfg.clip_sigma)
     ra, dec = sol.pixel_to_radec(xy)
     is_cat = np.zeros(len(xy), bool)
     if len(xy):
