@@ -271,25 +271,27 @@ def test_held_out_faster_target_and_the_gate(speed, gate, direction, recovered):
 
 def _chain_event(occ: np.ndarray, gate: int, frames: int, min_hits: int, edge: int):
     """Starts (frame, index) whose nearest-point chain through the gate of the last point
-    reaches ``min_hits`` points within ``frames`` frames (the event of eq. 9, followed directly)."""
+    reaches ``min_hits`` points within ``frames`` frames (the event of eq. 9, followed directly),
+    mapped to the chain's points ``(frame, x, y)``."""
     n_fr, h, w = occ.shape
     r = gate // 2
     offs = sorted(((dx, dy) for dx in range(-r, r + 1) for dy in range(-r, r + 1)),
                   key=lambda o: (o[0] ** 2 + o[1] ** 2, o[1], o[0]))  # ties: row-major, as the initiator
     pts = [np.column_stack(np.nonzero(occ[k])[::-1]) for k in range(n_fr)]
-    ok, n = set(), 0
+    ok, n = {}, 0
     for k in range(n_fr - frames + 1):
         for i, (x, y) in enumerate(pts[k]):
             if not (edge <= x < w - edge and edge <= y < h - edge):
                 continue
             n += 1
-            cx, cy, hits = x, y, 1
+            cx, cy, chain = x, y, [(k, x, y)]
             for j in range(1, frames):
                 hit = next(((dx, dy) for dx, dy in offs if occ[k + j, cy + dy, cx + dx]), None)
                 if hit is not None:
-                    cx, cy, hits = cx + hit[0], cy + hit[1], hits + 1
-                if hits >= min_hits:
-                    ok.add((k, i))
+                    cx, cy = cx + hit[0], cy + hit[1]
+                    chain.append((k + j, cx, cy))
+                if len(chain) >= min_hits:
+                    ok[(k, i)] = chain
                     break
     return ok, n, pts
 
@@ -317,7 +319,15 @@ def test_held_out_eq9_event_and_the_initiator_below_it(gate, frames, min_hits, p
               if t.hits[0][0] <= len(pts) - frames}
     starts = {(k, i) for k, i in starts
               if np.all((pts[k][i] >= edge) & (pts[k][i] < np.array(shape[::-1]) - edge))}
-    assert starts and starts <= ok
+    assert starts and starts <= set(ok)
+    # the initiator drops hypotheses sharing points with a confirmed track: it reports the
+    # distinct chains (those reusing no point of an earlier one), up to a few
+    used, distinct = set(), 0
+    for key in sorted(ok):
+        if not used.intersection(ok[key]):
+            distinct += 1
+            used.update(ok[key])
+    assert abs(len(starts) - distinct) <= max(3, 0.05 * distinct)
     # a wrong gate (one size larger) is rejected by the same interval
     assert not mc_agreement(len(ok), n, hyp.track_false_alarm(p_f, gate + 2, frames - 1,
                                                               min_hits - 1))
