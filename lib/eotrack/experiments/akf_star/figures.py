@@ -84,9 +84,9 @@ def plot_curves_by_scenario(res: AblationResult, kind: str = "error", axes: Any 
                                  sharex=True, sharey=True, squeeze=False)
         fig.subplots_adjust(wspace=0.3, hspace=0.4, top=0.88, bottom=0.1, left=0.08, right=0.98)
         grid = grid.ravel()
-        for ax in grid[n:]:
-            ax.set_axis_off()
         legend_ax = grid[n] if grid.size > n else None
+        for ax in grid[n + 1:]:      # spare cells beyond the legend's: nothing drawn there
+            ax.remove()
         axes = grid[:n]
     axes = np.ravel(axes)
     for i, (ax, sc) in enumerate(zip(axes, res.scenarios)):
