@@ -185,6 +185,13 @@ def test_bad_input_clouded_frame_and_unresolved_objects_do_not_stop_the_night():
     assert unres["why"].str.contains("28626").all()
     assert not res[0].solved[2] and res[0].solved[[0, 1, 3, 4]].all()
     assert all(t["unresolved"] for r in res for t in r.tracks if t["true_obj"] >= 0)
+    # blended tracklets enter neither association nor any prediction series (nor the orbit)
+    from eotrack.experiments.capstone.pipeline import _tracklet_series
+
+    series = _tracklet_series(plan, res, pd.DataFrame())
+    n_ok = sum(not t["unresolved"] and t["cat_obj"] >= 0 for r in res for t in r.tracks)
+    assert sum(len(v) for v in series["catalogue"].values()) == n_ok
+    assert len(C.associate_tracklets(plan, res)) == 0
 
 
 def test_stage_extraction_no_targets():
@@ -210,7 +217,7 @@ def quick_night():
 def test_quick_night_every_stage(quick_night):
     n = quick_night
     val = dict(zip(n.budget["metric"], n.budget["value"]))
-    assert val["frames left out (no plate solution)"] == 1  # the clouded frame
+    assert val["frames left out (no plate solution, or extraction failed)"] == 1  # the clouded frame
     assert list(n.failures["stage"]) == ["astrometry"]
     assert val["plate solution: true error at the objects (RMS)"] < 0.5 * QUICK.pixel_scale_arcsec
     assert val["correct pairs, cluster field"] == 1.0
@@ -223,6 +230,22 @@ def test_quick_night_every_stage(quick_night):
     assert len(orbit) >= 3 and orbit["rms_arcsec"].max() < 30.0
     sc = C.scorecard(n)
     assert {"extraction", "astrometry", "triangulation", "association"} <= set(sc["stage"])
+
+
+def test_stored_night_round_trip(quick_night, tmp_path):
+    from eotrack.experiments.capstone import stored as S
+
+    p = S.write_stored(tmp_path / "s.json", {"night": S.night_summary(quick_night)})
+    content, why = S.read_stored(p)
+    assert why == "" and content is not None
+    back = S.night_from_summary(content["night"], QUICK)
+    pd.testing.assert_frame_equal(back.budget, quick_night.budget)
+    assert len(back.pairs) == len(quick_night.pairs)
+    assert C.scorecard(back)["pass"].tolist() == C.scorecard(quick_night)["pass"].tolist()
+    with pytest.raises(ValueError, match="config"):
+        S.night_from_summary(content["night"], C.CapstoneConfig())
+    missing, why = S.read_stored(tmp_path / "none.json")
+    assert missing is None and "bench_capstone" in why
 
 
 def test_quick_night_serial_equals_local_cluster(quick_night):
