@@ -31,6 +31,8 @@ WRONG = {
 
 WRONG_MORE = {
     "capstone.2": [lambda: 7.292115e-5 * 20.0 * RAD / 15.0,  # cos δ forgotten
+                   lambda: 2 * np.pi / 86400 * 20 * RAD * np.cos(np.radians(30.0)) / 15,  # solar
+                   lambda: 15.0 * 20 * np.cos(np.radians(30.0)) / 15,  # 15″/s, not sidereal
                    lambda: 7.292115e-5 * 20.0 * RAD * np.sin(np.radians(30.0)) / 15.0],
     "capstone.5": [lambda: 1 - _p_in(0.5, np.sqrt(2) * 0.3),  # outside, not inside
                    lambda: 0.99],  # the true pair's probability

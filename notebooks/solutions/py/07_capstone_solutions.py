@@ -43,7 +43,7 @@ assert check("capstone.1", answer)
 print(f"answer = {answer:.3f}")
 
 # %% [markdown]
-# About 1.4 km per arcsecond. Two corrections make it the capstone's measured number: both
+# That is the range error per arcsecond of one ray (printed above). Two corrections make it the capstone's measured number: both
 # rays have errors, and they add in quadrature, $\sqrt{\sigma_{\theta,a}^2+\sigma_{\theta,b}^2}$;
 # and only the baseline's component perpendicular to the line of sight, $B_\perp$, makes
 # parallax — it is smaller than $B$, so the error is *larger*. The triangulation uses one
@@ -64,8 +64,8 @@ assert np.isclose(answer, C.sidereal_drift_px(cfg, dec_deg=30.0))
 print(f"answer = {answer:.3f}")
 
 # %% [markdown]
-# Seventeen pixels per frame step against a GEO target's fraction of a pixel: the motion test
-# has a wide margin. The star/target separation compares RA/Dec from the plate solutions of
+# Many pixels per frame step (printed above) against a GEO target's fraction of a pixel: the
+# motion test has a wide margin. The star/target separation compares RA/Dec from the plate solutions of
 # neighbouring frames, so it does not even need the drift — a star is simply fixed on the sky.
 
 # %% [markdown]
@@ -87,21 +87,25 @@ print(f"expected completeness there {C.expected_completeness(c):.2f}, expected r
 # "broken" here; the photons are simply too few.
 
 # %% [markdown]
-# ## Exercise 4 — why the curve predictors fail in the cluster's field (critique)
+# ## Exercise 4 — why the curve predictors fail on a mixed series (critique)
 
 # %%
 answer = "B"
 assert check("capstone.4", answer)
 
 # %% [markdown]
-# The old chain put every tracklet of an object's field into its RA/Dec series. In the
-# cluster's field two thirds of them are the companions, 0.1° away, each on a smooth track of
-# its own: a minimal sample drawn from one companion is a perfectly good sinusoid-plus-drift,
-# so RANSAC and WRANSAC can keep it (and with three objects at the same instants some samples
-# are degenerate), while least squares averages the three tracks. A is geometry, independent
-# of the sky; C fails because the catalogue-correlated series of the same two hours predicts
-# to a few arcseconds; D confuses stages — the curve predictors use the angles, not the
-# triangulated positions.
+# The old chain put every tracklet of an object's field into its RA/Dec series; in the
+# cluster's field two thirds of them are the companions', taken at the same instants as the
+# object's own. The isolation table separates the effects. One companion alone is a consistent
+# wrong track: the predictors follow it, and the error is about the companions' separation.
+# Mixed series are different: a minimal sample that takes points from two tracks is fitted by
+# a strongly curved sinusoid-plus-drift (or, with two points at one instant, is degenerate — the
+# `note` column), which extrapolates far through an hour of eclipse; with only a handful of
+# points per track no sample's consensus clearly beats the others, so RANSAC and WRANSAC can
+# keep such a fit, while least squares averages all points into one smooth compromise whose
+# error stays of the order of the separations. A is geometry, independent of the sky; C fails
+# because the same two hours of the object's own tracklets predict to a few arcseconds; D
+# confuses stages — the curve predictors use the angles, not the triangulated positions.
 
 # %% [markdown]
 # ## Exercise 5 — a wrong partner inside the epipolar gate (derivation)
@@ -119,8 +123,8 @@ assert np.isclose(g, C.epipolar_gate_px())
 print(f"g = {g:.3f} px, answer = {answer:.3f}")
 
 # %% [markdown]
-# Nineteen times in twenty the wrong partner passes the gate: a gate only separates objects
-# whose epipolar distance exceeds it by a few σ. The assignment then prefers the nearer
+# Most of the time (the probability printed above) the wrong partner passes the gate: a gate
+# only separates objects whose epipolar distance exceeds it by a few σ. The assignment then prefers the nearer
 # candidate, so what matters is whether the wrong one is *nearer* than the true one — far less
 # likely when the measured noise is, as here, smaller than the gate's conservative 0.3 px.
 
@@ -133,12 +137,13 @@ span = (cfg.burst_frames - 1) * cfg.frame_interval_s
 answer = max(1.5 * float(rates.to_numpy().max()) / 5.0, 2.0 / span)
 assert check("capstone.6", answer)
 assert np.isclose(answer, C.velocity_gate(C.with_changes(cfg, pixel_scale_arcsec=5.0)))
-print(f"fastest rate {rates.to_numpy().max():.2f}″/s → answer = {answer:.3f} px/s")
+print(f"fastest rate {rates.to_numpy().max():.2f}″/s = {rates.to_numpy().max() / 5.0:.2f} px/s at "
+      f"5″/px → answer = {answer:.3f} px/s")
 
 # %% [markdown]
-# Three times the 15″/px gate: the inclined 14128 moves about 3.4″/s in the staring frame,
-# 0.68 px/s at 5″ pixels — beyond the old fixed 0.5 px/s, which is why its recall silently fell
-# there. The rate is a property of the object, the gate in pixels a property of the camera.
+# Three times the 15″/px gate: the inclined 14128's rate in the staring frame (printed above)
+# is beyond the old fixed 0.5 px/s at 5″ pixels, which is why its recall silently fell there.
+# The rate is a property of the object, the gate in pixels a property of the camera.
 
 # %% [markdown]
 # [← the lesson: 07 · Capstone](../07_capstone_geo_surveillance.ipynb) ·
