@@ -132,6 +132,8 @@ def test_cloudy_and_unreadable_frames_are_skipped_and_the_run_goes_on(tmp_path):
     cloudy = s.frames[2].frame_id
     assert any(cloudy in m and "stage 'astrometry'" in m and "too few stars" in m for m in msgs)
     assert any("no_time.fits" in m and "stage 'read'" in m and "DATE-OBS" in m for m in msgs)
+    read_msg = next(m for m in msgs if "stage 'read'" in m)
+    assert read_msg.startswith("frame 'no_time' (") and read_msg.count("no_time.fits") == 1
     stages = {(r["frame"], r["stage"]) for r in tab.meta["skipped"]}
     assert (cloudy, "astrometry") in stages
     assert cloudy not in set(tab["frame"])

@@ -16,6 +16,7 @@ import warnings
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from os import PathLike
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -437,7 +438,10 @@ def measure_frames(frames: Sequence[Frame | str | PathLike], catalog: StarCatalo
             try:
                 good.extend(read_fits([f]))
             except (FitsFrameError, FileNotFoundError) as exc:
-                _skip(skipped, str(f), str(f), "read", str(exc))
+                reason = str(exc)
+                if reason.startswith(f"{f}: "):      # the messages start with the path
+                    reason = reason[len(f"{f}: "):]
+                _skip(skipped, Path(f).stem, str(f), "read", reason)
         else:
             raise TypeError(f"frames[{i}] must be a Frame or a FITS path, got "
                             f"{type(f).__name__}")

@@ -53,6 +53,9 @@ class SimulatedSequence:
         True target RA/Dec per frame.
     pointing_error_arcsec, roll_error_deg
         The mount error applied (believed = truth turned by it).
+    star_dirs, star_mag, star_catalogued
+        Every rendered star: unit direction ``(m, 3)``, magnitude, and whether it is a
+        catalogue star (the others are the uncatalogued faint ones).
     """
 
     frames: tuple[Frame, ...]
@@ -62,6 +65,9 @@ class SimulatedSequence:
     target_dec_deg: np.ndarray
     pointing_error_arcsec: float
     roll_error_deg: float
+    star_dirs: np.ndarray
+    star_mag: np.ndarray
+    star_catalogued: np.ndarray
 
 
 def _rot(axis: int, a: float) -> np.ndarray:
@@ -190,5 +196,6 @@ def simulate_sequence(rng: np.random.Generator, *, ra_deg: float = 80.0, dec_deg
         frames.append(Frame(img, t0 + t_s[k] * u.s, exp, station,
                             wcs_from_camera(K, E @ true_R[k], (size, size)),
                             f"{sequence}_{k:03d}", loc, sequence))
+    catalogued = np.r_[np.ones(len(cat), bool), np.zeros(nf, bool)]
     return SimulatedSequence(tuple(frames), tuple(w_true), t_xy, t_ra, t_dec, err,
-                             float(roll))
+                             float(roll), dirs_all, np.concatenate(mags), catalogued)
