@@ -106,9 +106,7 @@ SUBPACKAGES = tuple(sorted(
 #: pages whose figures are still shown below 80 % of their size (wider than 900 px), until
 #: their owners redraw them narrower (house style: at most ~8.2 in at 110 dpi); value: owner
 WIDE_FIGURES_XFAIL: dict[str, str] = {
-    "notebooks/04_track_init_logic_hough": "P04",
     "papers_repro/akf_star/REPORT": "P05",
-    "papers_repro/track_init_hough/REPORT": "P04",
 }
 MAX_NATIVE_PX = 900  # the 720 px column / 0.8
 
