@@ -437,8 +437,9 @@ display(Markdown(
     f"error ({sig_meas:.3f} px): it is a conservative bound, so wrong partners fall inside it "
     "more often than they are nearer than the true one. With the measured σ the χ² model "
     f"expects {fa_meas[fa_meas['cluster']]['p_wrong_nearer'].mean():.3f} of the cluster's "
-    f"pairings to be wrong; {int((~cl['correct']).sum())} of {len(cl)} were. It *can* fail: "
-    f"in the worst visit the model gives {fa_meas['p_wrong_nearer'].max():.2f}."))
+    f"pairings to be wrong; {int((~cl['correct']).sum())} of {len(cl)} were."
+    + (f" It *can* fail: in the worst visit the model gives {fa_meas['p_wrong_nearer'].max():.2f}."
+       if fa_meas["p_wrong_nearer"].max() > 0.05 else "")))
 
 # %% [markdown]
 # ### Initiation: recall, false tracks and GOSPA
