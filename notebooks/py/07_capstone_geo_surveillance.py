@@ -382,9 +382,9 @@ night.failures
 # %% [markdown]
 # ### Triangulation: σ_R ≈ R²σ_θ/B⊥ with measured inputs
 #
-# An earlier version of this notebook guessed $\sigma_\theta$ = 0.2 px and the full baseline
-# and expected a range error twice the one it measured. With the measured in-plane error of
-# each ray and each pair's $B_\perp$ the formula and the measurement agree:
+# An earlier version of this notebook guessed $\sigma_\theta$ = 0.2 px and the full baseline,
+# and its expected range error disagreed with the measured one (the ratio is printed below).
+# With the measured in-plane error of each ray and each pair's $B_\perp$ they agree:
 
 # %%
 sg = night.sigma
@@ -400,6 +400,8 @@ recon
 # %%
 assert 1 / 1.6 < sg["range_rms_km"] / sg["measured_km"] < 1.6
 display(Markdown(
+    f"Guessed / measured: {sg['assumed_km'] / sg['range_rms_km']:.2f}×; formula with the "
+    f"measured inputs / measured: {sg['measured_km'] / sg['range_rms_km']:.2f}×. "
     f"The rays' total angle errors are {sg['ray_rms_arcsec']:.2f}″ RMS "
     f"({sg['ray_rms_arcsec'] / cfg.pixel_scale_arcsec:.3f} px): centroid and plate solution "
     "together. Only their component in the epipolar plane moves the range; the two rays' "
@@ -445,7 +447,8 @@ display(Markdown(
 # ### Initiation: recall, false tracks and GOSPA
 #
 # GOSPA per burst (`eotrack.tracking.metrics.initiation_metrics`, Stone Soup; $c$ = 5 px,
-# $p$ = 1, from the 4th frame on, objects in the umbra not counted) splits into a missed part
+# $p$ = 1, from the 4th frame on, objects in the umbra not counted; a burst that lost a frame
+# to clouds is not scored) splits into a missed part
 # ($c/2$ per missed object and frame), a false part and a localisation part:
 
 # %%
