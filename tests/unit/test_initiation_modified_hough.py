@@ -421,3 +421,28 @@ def test_wide_acceleration_discs_cost_no_more_with_long_intervals():
     fr = [(30.0 * k, pts + np.array([0.5, 0.2]) * 30.0 * k) for k in range(5)]
     out = ModifiedHoughInitiator(v_min=0.1, v_max=3.0).initiate(fr)
     assert len(out) >= 150
+
+
+def _confirmed_before(tracks, k):
+    return sorted((t.confirmed_at, tuple(h for h in t.hits if h[0] <= t.confirmed_at))
+                  for t in tracks if t.confirmed_at < k)
+
+
+def test_density_cap_is_causal_and_robust_to_a_stray_detection():
+    """Review of issue 27 (round 3): later frames and one far detection must not change the
+    confirmations made before them."""
+    from eotrack.experiments import track_init_hough as TH
+
+    ini = ModifiedHoughInitiator(v_min=3, v_max=240, **TH.HELDOUT_OPTS)
+    rng = np.random.default_rng(4242)
+    for _ in range(3):
+        frames = TH.heldout_scene(rng).frames
+        full = ini.initiate(frames)
+        k = len(frames) - 2
+        assert _confirmed_before(ini.initiate(frames[:k + 1]), k) == _confirmed_before(full, k)
+        t_last, xy_last = frames[-1]
+        stray = [*frames[:-1], (t_last, np.vstack([xy_last, [[4000.0, 4000.0]]]))]
+        last = len(frames) - 1
+        assert _confirmed_before(ini.initiate(stray), last) == _confirmed_before(full, last)
+    with pytest.raises(ValueError, match="field_px"):
+        ModifiedHoughInitiator(field_px=(512.0, -1.0))

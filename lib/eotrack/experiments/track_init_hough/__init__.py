@@ -59,6 +59,7 @@ from .figures import (
 from .scenario import (
     HELDOUT_OPTS,
     HELDOUT_SEED,
+    HELDOUT_SEED_FIRST,
     HELDOUT_TARGETS,
     SLUG,
     XU_TARGETS,
@@ -98,6 +99,7 @@ __all__ = [
     "EXPLORE_SCENES",
     "HELDOUT_OPTS",
     "HELDOUT_SEED",
+    "HELDOUT_SEED_FIRST",
     "HELDOUT_TARGETS",
     "SLUG",
     "TITLE",

@@ -26,6 +26,7 @@ from eotrack.validation import check_generator, check_positive, check_probabilit
 __all__ = [
     "HELDOUT_OPTS",
     "HELDOUT_SEED",
+    "HELDOUT_SEED_FIRST",
     "HELDOUT_TARGETS",
     "SLUG",
     "XU_TARGETS",
@@ -526,8 +527,13 @@ class HeldOutConfig:
 #: accelerating objects among clutter bursts (chosen on seeds 11 and 777: exploratory)
 HELDOUT_OPTS: dict[str, Any] = {"hold_triplets": True, "accel_triplets": True,
                                 "chance_budget": 2.0}
-#: the decisive held-out seed (fixed with its targets before it was first drawn, 2026-12-02)
-HELDOUT_SEED = 20261202
+#: the first decisive held-out seed (fixed with its targets in commit 5dac231, 00:17 UTC, before it
+#: was drawn). Its first run (60 scenes) is the result that counts for that code: recall 0.827,
+#: 16.85 false tracks per scene; the density cap was changed after it (twice: the field over all
+#: detections, then causal), so later numbers on this seed are post hoc.
+HELDOUT_SEED_FIRST = 20261202
+#: the decisive held-out seed for the current code (fixed 2026-12-02 01:43 UTC, before it was drawn)
+HELDOUT_SEED = 20261204
 #: issue 27's targets on :data:`HELDOUT_SEED` (60 scenes of :class:`HeldOutConfig` at ±3 px/s²)
 HELDOUT_TARGETS: dict[str, Any] = {"recall": 0.90, "false <= logic 3/4": True,
                                    "ms per frame at 200": 5.0, "ms per frame at 1000": 50.0}

@@ -156,8 +156,13 @@ class ModifiedHoughInitiator:
     chance_budget
         With ``accel_triplets``: the acceleration widening of a triplet shape's third-point
         disc is cut so that the disc holds at most this many chance triplets in expectation
-        (uniform clutter over the bounding box of all detections, all velocity-gated seed
-        pairs); never below the constant-velocity disc. ``0`` lifts the cut.
+        (uniform clutter over the field, all velocity-gated seed pairs); never below the
+        constant-velocity disc. ``0`` lifts the cut.
+    field_px
+        With ``accel_triplets``: ``(width, height)`` of the field for ``chance_budget``
+        (pixels). ``None`` (default): estimated at each frame from the detections of the
+        window's frames up to it (their 1st–99th-percentile box: causal, robust to a stray
+        detection).
     cv_check
         Literal procedure only: our constant-velocity check of a confirmed cell (one
         detection per frame whose consecutive pairs map to the cell or a 26-neighbour, all
@@ -183,6 +188,7 @@ class ModifiedHoughInitiator:
     accel_triplets: bool = False
     hold_triplets: bool = False
     chance_budget: float = 2.0
+    field_px: tuple[float, float] | None = None
     cv_check: bool = True
 
     def __post_init__(self) -> None:
@@ -203,6 +209,11 @@ class ModifiedHoughInitiator:
             raise ValueError(f"alpha must lie in (0, 1), got {self.alpha}")
         check_positive(self.accel_px_s2, "accel_px_s2", allow_zero=True)
         check_positive(self.chance_budget, "chance_budget", allow_zero=True)
+        if self.field_px is not None:
+            f = np.asarray(self.field_px, dtype=float)
+            if f.shape != (2,) or not np.all(np.isfinite(f)) or np.any(f <= 0):
+                raise ValueError(f"field_px must be two positive numbers (width, height in "
+                                 f"pixels) or None, got {self.field_px!r}")
         for name in ("accel_gapped", "accel_triplets", "hold_triplets", "cv_check"):
             if not isinstance(getattr(self, name), (bool, np.bool_)):
                 raise TypeError(f"{name} must be True or False, got {getattr(self, name)!r}")
@@ -742,9 +753,10 @@ class _VerifiedEngine:
         self.avail_flat = np.ones(int(self.off[-1]), dtype=bool)
         self.available = [self.avail_flat[self.off[f]:self.off[f + 1]] for f in range(len(xys))]
         self.xy_flat = np.concatenate(xys) if self.off[-1] else np.zeros((0, 2))
-        # the field: bounding box of every frame's detections (at least 1 px²)
-        self.field_area = (max(float(np.prod(np.ptp(self.xy_flat, axis=0) + 1.0)), 1.0)
-                           if len(self.xy_flat) else 1.0)
+        # the field of the density cap: the caller's, else estimated frame by frame (causal)
+        self.field_fixed = (None if cfg.field_px is None
+                            else float(cfg.field_px[0]) * float(cfg.field_px[1]))
+        self.field_area = 1.0
         self.frame_of = np.repeat(np.arange(len(xys)), sizes)
         self.handoff = TrackHandOff(cfg.handoff_gate_px)
         self.log: list[dict] = []
@@ -778,7 +790,7 @@ class _VerifiedEngine:
             q = self.q_acc
             if self.chance_budget > 0:  # 0: no cut
                 # density-aware: the disc may not hold more than `chance_budget` chance triplets
-                # in expectation (uniform clutter over the target frame's bounding box)
+                # in expectation (uniform clutter over the field, see _field)
                 n_t = int(self.available[ft].sum())
                 area = self.field_area
                 n_pairs = len(ia_all) * len(ib_all) * min(
@@ -823,9 +835,24 @@ class _VerifiedEngine:
         gt = self.off[ft] + it_all[pi]
         return np.stack([ga, gb, gt], 1)
 
+    def _field(self, k: int) -> float:
+        """Area of the field for the density cap at frame ``k``: ``field_px`` if given, else
+        the 1st–99th-percentile box of the detections of the window's frames up to ``k``
+        (causal, and one stray detection cannot inflate it); at least 1 px²."""
+        if self.field_fixed is not None:
+            return self.field_fixed
+        lo = max(0, k - self.slots + 1)
+        pts = self.xy_flat[self.off[lo]:self.off[k + 1]]
+        if len(pts) < 2:
+            return 1.0
+        q = np.percentile(pts, [1.0, 99.0], axis=0)
+        return max(float(np.prod(q[1] - q[0] + 1.0)), 1.0)
+
     def _frame(self, k: int) -> None:
         xy_k = self.xys[k]
         avail_k = self.available[k]
+        if self.q_acc > 0 and self.chance_budget > 0:
+            self.field_area = self._field(k)
         self.handoff.claim(k, self.times[k], xy_k, avail_k)
         lo = max(0, k - self.m + 1)
         entry = {"frame": k, "time_s": float(self.times[k]), "candidates": int(avail_k.sum()),
