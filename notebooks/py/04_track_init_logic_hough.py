@@ -723,13 +723,51 @@ bare.round(3)
 # ### A held-out family (issue 27's "Generalise" target)
 #
 # 8 irregular frames (0.6–1.6 s apart), P_D 0.8, a burst of 150 false alarms in one frame,
-# objects accelerating by up to ±3 px/s². Target and decisive seed (`TH.HELDOUT_TARGETS`,
-# `TH.HELDOUT_SEED`) were fixed before that seed was first drawn: recall ≥ 0.90, no more false
-# tracks than logic 3/4. Beside the default, the opt-ins `TH.HELDOUT_OPTS` (chosen on seeds 11
-# and 777: exploratory): **hold-and-confirm** (a 3-hit candidate waits a frame, so a 4-hit
-# track through its detections wins), an **acceleration-aware** χ² for 3 hits with 4-hit
-# quadratic extensions, its widening **density-capped** (a disc holds at most `chance_budget`
-# chance triplets). The benchmark runs 60 scenes; here fewer:
+# objects accelerating by up to ±3 px/s². The targets (`TH.HELDOUT_TARGETS`: recall ≥ 0.90, no
+# more false tracks than logic 3/4, ≤ 5 / 50 ms per frame at 200 / 1,000 candidates) were fixed
+# before any decisive seed was drawn. The first decisive seed (`TH.HELDOUT_SEED_FIRST`) was
+# used once; the density cap was changed after it, so the current code's decisive seed is
+# `TH.HELDOUT_SEED`, fixed before it was drawn. The default initiator is unchanged; beside it,
+# the opt-ins `TH.HELDOUT_OPTS` (chosen on seeds 11 and 777: exploratory): **hold-and-confirm**
+# (a 3-hit candidate waits a frame, so a 4-hit track through its detections wins), an
+# **acceleration-aware** χ² for 3 hits with 4-hit quadratic extensions, its widening
+# **density-capped** (the widened discs of a frame triple, summed over all seed pairs, hold at
+# most `chance_budget` chance triplets in expectation). The benchmark's
+# stored record (60 scenes per seed, `benchmarks/bench_track_init_hough.py --record`):
+
+# %%
+_rec_file = papers_repro_dir() / TH.SLUG / "heldout_benchmark.json"
+if _rec_file.exists():
+    rec = json.loads(_rec_file.read_text())
+    tg = rec["targets"]
+    pf = pd.DataFrame(rec["per frame"]).set_index(["initiator", "candidates/frame"])
+    crit_rows = []
+    for seed_r, sr in rec["seeds"].items():
+        lg = sr["initiators"]["logic 3/4"]
+        for name in ("modified Hough (ours, default)", "modified Hough (ours, held-out opt-ins)"):
+            r = sr["initiators"][name]
+            pname = "modified Hough (ours)" if "default" in name else name
+            crit_rows.append({
+                "seed": f"{seed_r} ({sr['role']})", "initiator": name,
+                "recall": r["recall"], f"recall ≥ {tg['recall']}": r["recall"] >= tg["recall"],
+                "false per scene": r["false per scene"],
+                "logic 3/4 false": lg["false per scene"],
+                "false ≤ logic": r["false per scene"] <= lg["false per scene"],
+                "CPU ms/frame at 200": pf.loc[(pname, 200), "CPU ms/frame"],
+                "CPU ms/frame at 1000": pf.loc[(pname, 1000), "CPU ms/frame"]})
+    display(Markdown(
+        f"Recorded {rec['date']} at load average {rec['load average at start']:.1f} on "
+        f"{rec['cpu count']} cores: CPU times are inflated by the load, so the time budgets "
+        f"({tg['ms per frame at 200']:g} / {tg['ms per frame at 1000']:g} ms) are judged "
+        "only by ratio here — the opt-ins against the default at the same load: "
+        f"{pf.loc[('modified Hough (ours, held-out opt-ins)', 200), 'CPU ms/frame'] / pf.loc[('modified Hough (ours)', 200), 'CPU ms/frame']:.1f}× "
+        f"at 200, "
+        f"{pf.loc[('modified Hough (ours, held-out opt-ins)', 1000), 'CPU ms/frame'] / pf.loc[('modified Hough (ours)', 1000), 'CPU ms/frame']:.1f}× "
+        "at 1,000 candidates."))
+    display(pd.DataFrame(crit_rows).round(3))
+
+# %% [markdown]
+# The same on a few scenes here:
 
 # %%
 from eotrack.tracking.initiation import LogicInitiator
@@ -773,7 +811,7 @@ display(Markdown(
     f"with the opt-ins {_h.loc['ours + HELDOUT_OPTS', 'recall']:.3f} "
     f"({_h.loc['ours + HELDOUT_OPTS', 'false per scene']:.1f} false tracks per scene; logic 3/4 "
     f"{_h.loc['logic 3/4', 'recall']:.3f}, {_h.loc['logic 3/4', 'false per scene']:.1f}). "
-    f"Target {'met' if _met else '**not met**'} here. Of its {miss['missed']} missed objects, "
+    f"Recall target {'met' if _met else '**not met**'} here. Of its {miss['missed']} missed objects, "
     f"{miss['stolen']} lost a detection to another track (a chance triplet or a mixed one) and "
     f"{miss['seen 3 times']} were seen only three times, where no four-hit test can help."))
 held.round(3)
@@ -817,7 +855,8 @@ display(Markdown(f"Verified initiator, 200 uniform candidates per frame: {steady
 # * Pairs vote for line, speed and direction; cells quantise what noise spreads, more so far
 #   from ρ's origin.
 # * A χ² test at the noise is the same 3-of-4 rule with the right tolerance; best fit first
-#   keeps objects' detections from chance tracks.
+#   keeps most objects' detections from chance tracks at the planted densities (a clutter burst
+#   still takes some: Beyond).
 # * A 3-of-4 rule has a chance rate ∝ λ³σ²/A: compute it before judging false tracks.
 # * Two hits carry no test (2/3), a line cell knows no time (classic Hough): both fail in
 #   clutter.
@@ -894,7 +933,9 @@ if answer is not None:
 #
 # **Reviews.** Round 1 (issue 27): 18 findings (3 high, 8 medium, 7 low), 15 fixed or answered,
 # 3 left — the held-out target, the bare procedure, random Table 1. The last two are now in
-# Beyond; the held-out target is still not met (Beyond's table). Round 2: pending.
+# Beyond. The held-out recall target is **not met** (Beyond's stored record): the default
+# initiator is unchanged, the opt-ins raise recall but not to 0.90 and cost more time per frame
+# at 1,000 candidates. Round 2: pending.
 
 # %% [markdown]
 # ## 13 · References

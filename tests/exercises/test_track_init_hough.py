@@ -143,3 +143,18 @@ def test_exercise3_rejects_the_panels_levels():
             assert not check("track_init_hough.3", other)
     assert not check("track_init_hough.3",
                      float(TH.explore_results(35.0, 6, False, True)["false"].mean()))
+
+
+def test_exercise2_rejects_the_xu_scenes_gate():
+    """Review r3 #5: the Xu configuration's gate (10 px/s) instead of the planted one (3 px/s)
+    is 0.75 % off and must be rejected."""
+    cfg = TH.PlantedConfig()
+    sc = TH.planted_scene(np.random.default_rng(2016), cfg, clutter_per_frame=30.0, n_objects=0,
+                          n_stars=0)
+    t = [tt for tt, _ in sc.frames]
+    n = [len(xy) for _, xy in sc.frames]
+    wrong = sum(n[a] * n[b] * n[c] * TH.triplet_chance_probability(
+        t[a], t[b], t[c], width=cfg.width_px, v_min=10.0, v_max=cfg.v_gate_px_s[1],
+        sigma_px=cfg.sigma_px, alpha=cfg.alpha) for a, b, c in TH.triplet_shapes(len(t)))
+    assert abs(wrong / _right_2() - 1) > 1e-3
+    assert not check("track_init_hough.2", wrong)

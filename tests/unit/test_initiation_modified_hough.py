@@ -375,11 +375,23 @@ def test_acceleration_aware_triplets_find_a_three_hit_accelerating_object():
     cv = ModifiedHoughInitiator(v_min=3, v_max=240).initiate(frames)
     aware = ModifiedHoughInitiator(v_min=3, v_max=240, accel_triplets=True).initiate(frames)
     assert cv == [] and len(aware) == 1 and aware[0].info["n_hits"] == 3
-    # off when there is no acceleration allowance
-    assert ModifiedHoughInitiator(v_min=3, v_max=240, accel_triplets=True,
-                                  accel_px_s2=0.0).initiate(frames) == []
     with pytest.raises(ValueError, match="chance_budget"):
         ModifiedHoughInitiator(chance_budget=-1.0)
+
+
+@pytest.mark.parametrize("kw, word", [
+    (dict(literal=True, hold_triplets=True), "hold_triplets"),
+    (dict(literal=True, accel_triplets=True), "accel_triplets"),
+    (dict(cv_check=False), "cv_check"),
+    (dict(accel_triplets=True, accel_px_s2=0.0), "accel_px_s2"),
+    (dict(accel_gapped=True, accel_px_s2=0.0), "accel_px_s2"),
+    (dict(chance_budget=5.0), "chance_budget"),
+    (dict(field_px=(512.0, 512.0)), "field_px"),
+])
+def test_options_that_would_be_ignored_are_refused(kw, word):
+    """Review r3 #8: a public option that would be silently ignored raises, naming it."""
+    with pytest.raises(ValueError, match=word):
+        ModifiedHoughInitiator(**kw)
 
 
 def test_density_cap_keeps_the_constant_velocity_disc_in_a_burst():

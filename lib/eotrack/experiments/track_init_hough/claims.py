@@ -348,7 +348,7 @@ def evaluate_planted(claim, planted: pd.DataFrame, chance_check: pd.DataFrame,
                 f"vs >= 0.95, false/chance {mm['false_over_chance']:.2f} vs <= 1.5); our "
                 "verified variant's result (variant column) does not count; 'paper' = the "
                 "paper's procedure plus our constant-velocity check, and the chance yardstick "
-                "is our χ² rule's, not the cell rule's (the recall half decides)")
+                "is our χ² rule's, not the cell rule's (the recall half already fails)")
     return ClaimResult.from_claim(
         claim, paper="several objects initiated in a few frames, residual stars no obstacle "
                      "(one 4-frame scene)",

@@ -152,12 +152,15 @@ class ModifiedHoughInitiator:
         the current frame waits one frame (it is confirmed at the next frame if nothing longer
         took its detections; at the last frame of the sequence nothing waits), so that a
         four-hit track through the same detections is preferred to it. Confirmation windows
-        then span ``m + 1`` frames. Off by default.
+        then span ``m + 1`` frames. Off by default. A batch option: it needs to know the last
+        frame, so a caller feeding a stream in chunks gets other tracks at the chunk ends than
+        one ``initiate`` over the whole sequence.
     chance_budget
         With ``accel_triplets``: the acceleration widening of a triplet shape's third-point
-        disc is cut so that the disc holds at most this many chance triplets in expectation
-        (uniform clutter over the field, all velocity-gated seed pairs); never below the
-        constant-velocity disc. ``0`` lifts the cut.
+        disc is cut so that the widened discs of one frame triple, **summed over all its
+        velocity-gated seed pairs**, hold at most this many chance triplets in expectation
+        (uniform clutter over the field); never below the constant-velocity disc. ``0`` lifts
+        the cut.
     field_px
         With ``accel_triplets``: ``(width, height)`` of the field for ``chance_budget``
         (pixels). ``None`` (default): estimated at each frame from the detections of the
@@ -217,6 +220,16 @@ class ModifiedHoughInitiator:
         for name in ("accel_gapped", "accel_triplets", "hold_triplets", "cv_check"):
             if not isinstance(getattr(self, name), (bool, np.bool_)):
                 raise TypeError(f"{name} must be True or False, got {getattr(self, name)!r}")
+        # options that would otherwise be silently ignored
+        if self.literal and (self.hold_triplets or self.accel_triplets):
+            raise ValueError("hold_triplets and accel_triplets act on the verified initiator "
+                             "only (literal=False)")
+        if not self.literal and not self.cv_check:
+            raise ValueError("cv_check=False is the paper's bare procedure: literal=True only")
+        if (self.accel_triplets or self.accel_gapped) and self.accel_px_s2 == 0:
+            raise ValueError("accel_triplets / accel_gapped need accel_px_s2 > 0")
+        if not self.accel_triplets and (self.field_px is not None or self.chance_budget != 2.0):
+            raise ValueError("chance_budget and field_px act with accel_triplets=True only")
         if not self.literal and self.m < 4:
             raise ValueError(f"the verified initiator (literal=False) needs m >= 4 (a triplet "
                              f"plus the window), got m={self.m}; use literal=True for m < 4")
