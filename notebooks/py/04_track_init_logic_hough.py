@@ -335,8 +335,11 @@ print("p_Δ for Δ = 1, 2, 3:", np.round(pp, 4))
 #
 # Every point of a batch of frames votes once per θ column in the cell of
 # $\rho = x\cos\theta + y\sin\theta$ [4]; a peak of n votes from n distinct frames is a track.
-# It knows nothing of time or speed. Check: our accumulator finds the same line as OpenCV's
-# `HoughLinesPointSet` [5].
+# It knows nothing of time or speed. Check against OpenCV's `HoughLinesPointSet` [5]. The two
+# follow different conventions: ours samples θ at column centres $(i + \frac12)\delta\theta$ and
+# reports a ρ bin by its centre; OpenCV samples θ at $i\,\delta\theta$ and reports a ρ bin by its
+# lower edge. So on this line the printed θ differ by −½ bin and ρ by +½ bin, and the assert
+# checks exactly these offsets (a half-bin shift of either would fail it).
 
 # %%
 line = np.array([[x, 2 * x / 3 + 5] for x in range(0, 60, 3)], float)
@@ -344,7 +347,9 @@ acc = hough_accumulator(line, d_rho=1.0, d_theta_deg=1.0, rho_max=100.0)
 r_pk, t_pk, votes = acc.peak()
 cv_best = cv2.HoughLinesPointSet(line.astype(np.float32).reshape(-1, 1, 2), 1, 3, -100, 100,
                                  1.0, 0.0, math.pi, math.radians(1.0)).reshape(-1, 3)[0]
-assert votes == int(cv_best[0]) and abs(math.degrees(t_pk - cv_best[2])) <= 1.0
+assert votes == int(cv_best[0])
+assert math.isclose(math.degrees(t_pk - cv_best[2]), -0.5, abs_tol=1e-4)  # half a 1° column
+assert math.isclose(r_pk - cv_best[1], 0.5, abs_tol=1e-6)  # half a 1 px bin
 print(f"ours: ρ = {r_pk:.1f} px, θ = {math.degrees(t_pk):.1f}°, {votes} votes | OpenCV: "
       f"ρ = {cv_best[1]:.1f}, θ = {math.degrees(cv_best[2]):.1f}°, {int(cv_best[0])} votes")
 
@@ -607,7 +612,8 @@ explore = panel(draw, tight=False,
 # * **Eq. (8)** read as "+1 per current frame" contradicts the paper's confirmation frames; we
 #   count distinct frames in Q(t) (§4.3). The lost formulas are rebuilt in §4.3 (numbering
 #   uncertain).
-# * **Direction s**: + along $(\sin\theta, -\cos\theta)$. **Origin of ρ**: the corner (unstated).
+# * **Direction s**: + along $(\sin\theta, -\cos\theta)$ (ours; the paper's "x and y
+#   increasing" disagrees at θ = 0). **Origin of ρ**: the corner (unstated).
 # * **Constant-velocity check** (ours): a confirmed cell must give one detection per frame on a
 #   constant-velocity track of the cell (residual ≤ δρ/2). Every "paper" row includes it;
 #   Beyond runs the bare procedure.
@@ -857,7 +863,8 @@ display(Markdown(f"Verified initiator, 200 uniform candidates per frame: {steady
 # * A χ² test at the noise is the same 3-of-4 rule with the right tolerance; best fit first
 #   keeps most objects' detections from chance tracks at the planted densities (a clutter burst
 #   still takes some: Beyond).
-# * A 3-of-4 rule has a chance rate ∝ λ³σ²/A: compute it before judging false tracks.
+# * A 3-of-4 rule's chance rate starts as λ³σ²/A (§4.6's first term) and grows more slowly once
+#   chance triplets share detections: compute it before judging false tracks.
 # * Two hits carry no test (2/3), a line cell knows no time (classic Hough): both fail in
 #   clutter.
 # * Judge initiators on many random scenes by recall, false tracks, GOSPA and SIAP.

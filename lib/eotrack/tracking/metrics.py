@@ -121,7 +121,8 @@ def gospa(estimates: np.ndarray, truths: np.ndarray, *, c: float,
     met.measure = _position_measure()
     g = met.compute_gospa_metric(xs, ys)[0].value
     half = c**p / 2.0
-    out = {k: float(g[k]) for k in ("distance", "localisation", "missed", "false")}
+    out = {k: float(g[k]) + 0.0 for k in ("distance", "localisation", "missed", "false")}
+    out = {k: (0.0 if v == 0 else v) for k, v in out.items()}  # never −0.0 in a table
     out["n_missed"] = round(out["missed"] / half)
     out["n_false"] = round(out["false"] / half)
     return out

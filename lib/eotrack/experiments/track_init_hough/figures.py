@@ -89,11 +89,18 @@ def plot_comparison(df: pd.DataFrame, sweep: str, metric: str,
     ax = get_ax(ax)
     sub = df[df["sweep"] == sweep]
     x = "clutter" if sweep == "clutter" else "p_detect"
-    for name, g in sub.groupby("method", sort=False):
+    groups = dict(tuple(sub.groupby("method", sort=False)))
+    same = ("logic 3/4" in groups and "angle logic 3/4" in groups
+            and np.allclose(groups["logic 3/4"][metric].to_numpy(),
+                            groups["angle logic 3/4"][metric].to_numpy()))
+    for name, g in groups.items():
         # the angle-constrained logic often coincides with logic 3/4: draw it dashed on top
         style = "--s" if name.startswith("angle") else "-o"
+        label = {"modified Hough 3/4": "modified Hough 3/4 (paper)"}.get(name, name)
+        if name == "logic 3/4" and same:
+            label = "logic 3/4 (under angle logic 3/4: equal here)"
         ax.plot(g[x], g[metric], style, ms=4, mfc="none" if name.startswith("angle") else None,
-                label=name)
+                label=label)
     ax.set_xlabel("false alarms per frame" if x == "clutter" else "detection probability P_D")
     ax.set_ylabel({"p_correct": "P(correct initiation)",
                    "false_per_frame": "false tracks per frame"}[metric])
