@@ -125,13 +125,14 @@ def test_bad_answer_raises(ex):
         check(ex, value)
 
 
-@pytest.mark.parametrize("written", ["d", "(d)", "d)", "[d]", "D.", " ( d ) "])
+@pytest.mark.parametrize("written", ["d", "(d)", "d)", "[d]", "D.", " ( d ) ",
+                                     "(d) for no observer", "d) for no observer"])
 def test_exercise6_accepts_the_option_as_labelled(written):
     # the question labels its options "(a)" … "(d)": a student who copies the label is judged
     assert check("akf_star.6", written)
 
 
-@pytest.mark.parametrize("written", ["(a)", "b)", "[c]"])
+@pytest.mark.parametrize("written", ["(a)", "b)", "[c]", "(a) at the equator"])
 def test_exercise6_labelled_wrong_options_fail(written):
     assert not check("akf_star.6", written)
 

@@ -261,3 +261,55 @@ def test_bad_inputs():
     with pytest.raises(ValueError, match="d must lie"):
         sage_husa_update(R, Q, e=np.zeros(2), K=np.zeros((6, 2)), H=H, F=F, P_prior=P0,
                          P_post=P0, P_prev=P0, d=0.0)
+
+
+# ---- ConfidenceKalmanFilter on a user's noise scale (review of 05, finding 11) -------------
+
+def _ca(sigma_px: float):
+    F, H = constant_acceleration_model(0.2)
+    Q = singer_process_noise(0.2, 0.7, 4.0)
+    return F, H, Q, sigma_px ** 2 * np.eye(2), np.zeros(6), np.eye(6)
+
+
+@pytest.mark.parametrize("sigma", [3.0, 6.0])
+def test_confidence_filter_refuses_noise_outside_its_r_bounds(sigma):
+    # a 3-6 px centroid noise with the default R bounds (≤ 1 px²) would be clipped silently to
+    # 1 px² at the first update (1.7-2x the error of a plain KF): refuse, naming r_bounds
+    F, H, Q, R, x0, P0 = _ca(sigma)
+    with pytest.raises(ValueError, match="r_bounds"):
+        ConfidenceKalmanFilter(F, H, Q, R, x0, P0)
+    ok = ConfidenceKalmanFilter(F, H, Q, R, x0, P0,
+                                ConfidenceConfig(r_bounds=(0.01, 100.0 * sigma ** 2)))
+    assert np.allclose(ok.R, R)
+    # without the adaptation there is nothing to clip
+    ConfidenceKalmanFilter(F, H, Q, R, x0, P0, ConfidenceConfig(adaptive_noise=False))
+
+
+def test_confidence_filter_keeps_a_large_noise_when_bounded_to_it():
+    g = np.random.default_rng(5)
+    F, H, Q, R, x0, P0 = _ca(3.0)
+    t = np.arange(300) * 0.2
+    truth = np.c_[3 * t + 20 * np.sin(0.5 * t), 10 * np.cos(0.3 * t)]
+    zs = truth + g.normal(0, 3.0, truth.shape)
+    kf = kalman_filter(zs, F, H, Q, R, x0, P0)[0][:, :2]
+    ckf = ConfidenceKalmanFilter(F, H, Q, R, x0, P0, ConfidenceConfig(r_bounds=(0.1, 900.0)))
+    xs = []
+    for z in zs:
+        ckf.predict()
+        ckf.update(z, 1.0)
+        xs.append(ckf.x[:2])
+    e_kf = np.hypot(*(kf - truth).T).mean()
+    e_ckf = np.hypot(*(np.array(xs) - truth).T).mean()
+    assert np.linalg.eigvalsh(ckf.R).max() > 1.0          # not clipped to the 1 px² default
+    assert e_ckf < 1.5 * e_kf
+
+
+@pytest.mark.parametrize("c_img", [5.0, -1.0, float("nan")])
+def test_confidence_filter_rejects_an_image_confidence_outside_0_1(c_img):
+    F, H, Q, R, x0, P0 = _ca(0.5)
+    akf = ConfidenceKalmanFilter(F, H, Q, R, x0, P0)
+    akf.predict()
+    with pytest.raises(ValueError, match="c_img"):
+        akf.update(np.zeros(2), c_img)
+    with pytest.raises(TypeError, match="c_img"):
+        akf.update(np.zeros(2), "high")

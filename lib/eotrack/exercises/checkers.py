@@ -261,6 +261,10 @@ class Choice(Checker):
             # an option written as it is labelled in the question: "(d)", "d)", "[d]", "d."
             bare = re.sub(r"^[(\[]\s*(.*?)\s*[)\]]$", r"\1", key)
             bare = re.sub(r"^(.*?)\s*[).:]$", r"\1", bare).strip()
+            # … or the whole option line copied: "(d) for no observer", "d) for no observer"
+            line = re.match(r"^[(\[]?\s*([^\s()\[\]]+?)\s*[)\]:.]\s+\S", key)
+            if bare not in norm and line and line.group(1) in norm:
+                bare = line.group(1)
             if bare not in norm:
                 raise ValueError(f"expected one of {list(self.options)}, got {answer!r}")
             key = bare

@@ -28,7 +28,7 @@ from .claims import (
     side_by_side,
     verdict_table,
 )
-from .explore import ExploreSession
+from .explore import ExploreSession, isolate_confidence
 from .figures import (
     VARIANT_STYLES,
     plot_confidence_trace,
@@ -126,6 +126,7 @@ __all__ = [
     "diurnal_check",
     "exploratory_config",
     "first_commit_config",
+    "isolate_confidence",
     "make_filter",
     "measure_sequence",
     "paired_interval",

@@ -23,6 +23,7 @@ from functools import lru_cache
 from typing import Any
 
 import numpy as np
+import pandas as pd
 
 from eotrack.imaging.star_sensor_sim import SCENARIOS, StarSequence, scenario, simulate_sequence
 from eotrack.montecarlo import trial_generators
@@ -38,7 +39,7 @@ from .trials import (
     track_measurements,
 )
 
-__all__ = ["ExploreSession"]
+__all__ = ["ExploreSession", "isolate_confidence"]
 
 _Key = tuple[str, int, int, float, float]
 
@@ -235,3 +236,30 @@ class ExploreSession:
             if v in variants:
                 out[v] = standard[v] if v in standard else self._confidence(key, v, confidence)
         return out
+
+
+def isolate_confidence(session: ExploreSession, scenario_name: str = "sway",
+                       seeds: tuple[int, ...] = (0, 1, 2)) -> pd.DataFrame:
+    """The confidence AKF's two mechanisms isolated on stored sequences: BEAK-ST re-filtered with
+    the Sage–Husa adaptation on/off (``adaptive_noise``) × the motion gating on/off (η = 0 makes
+    C_motion ≡ 1), everything else as the session's settings. Returns, per combination, the
+    number of sequences lost (final error beyond the gate) and the median of their mean errors."""
+
+    if not isinstance(session, ExploreSession):
+        raise TypeError(f"session must be an ExploreSession, got {type(session).__name__}")
+    if not seeds:
+        raise ValueError("seeds must name at least one sequence")
+    c0 = session.config.confidence
+    rows = {}
+    for sh in (True, False):
+        for gate in (True, False):
+            cc = replace(c0, adaptive_noise=sh, eta=c0.eta if gate else 0.0)
+            errs = [session.errors(scenario_name, seed=k, confidence=cc,
+                                   variants=("BEAK-ST",))["BEAK-ST"] for k in seeds]
+            rows[("on" if sh else "off", "on" if gate else "off")] = {
+                f"lost (of {len(seeds)})": int(sum(e[-1] > session.config.gate_px
+                                                   for e in errs)),
+                "median of mean errors (px)": float(np.median([e.mean() for e in errs]))}
+    out = pd.DataFrame(rows).T
+    out.index.names = ["Sage–Husa", "motion gating"]
+    return out

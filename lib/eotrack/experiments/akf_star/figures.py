@@ -29,12 +29,17 @@ __all__ = [
 
 #: line styles that keep coinciding curves apart (Baseline and BEAK-ST-GT are identical where
 #: both lose the star: Baseline is drawn wide and dashed underneath, GT thin and dotted on top)
-VARIANT_STYLES: dict[str, dict[str, Any]] = {
-    "Baseline": {"ls": "--", "lw": 2.6, "color": "tab:gray", "zorder": 1},
-    "BEAK-ST-GT": {"ls": ":", "lw": 1.6, "color": "tab:orange", "zorder": 3},
-    "BEAK-ST-SKF": {"ls": "-.", "lw": 1.2, "color": "tab:green", "zorder": 2},
-    "BEAK-ST": {"ls": "-", "lw": 1.4, "color": "tab:blue", "zorder": 4},
-}
+def _variant_styles() -> dict[str, dict[str, Any]]:
+    from eotrack.plotting import method_style
+
+    widths = {"Baseline": (2.6, 1), "BEAK-ST-GT": (1.6, 3), "BEAK-ST-SKF": (1.2, 2),
+              "BEAK-ST": (1.4, 4)}
+    return {v: {"ls": method_style(v).linestyle, "lw": lw, "color": method_style(v).color,
+                "zorder": z} for v, (lw, z) in widths.items()}
+
+
+#: (the house style's colour and line style per variant, eotrack.plotting.method_style)
+VARIANT_STYLES: dict[str, dict[str, Any]] = _variant_styles()
 
 
 def _ax(ax: Any = None, **kw: Any) -> Any:

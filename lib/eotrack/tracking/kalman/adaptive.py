@@ -229,6 +229,16 @@ class ConfidenceKalmanFilter(KalmanFilter):
         if not isinstance(config, ConfidenceConfig):
             raise TypeError(f"config must be a ConfidenceConfig, got {type(config).__name__}")
         self.config = config
+        if config.adaptive_noise and config.safeguard:
+            ev = np.linalg.eigvalsh(0.5 * (self._R + self._R.T))
+            lo_r, hi_r = config.r_bounds
+            if ev.min() < lo_r or ev.max() > hi_r:
+                raise ValueError(
+                    f"R's eigenvalues [{ev.min():.3g}, {ev.max():.3g}] lie outside "
+                    f"config.r_bounds {config.r_bounds}: the Sage–Husa safeguard would clip the "
+                    "noise to those bounds at the first trusted update. Set r_bounds to the "
+                    "scale of your measurement noise (e.g. ConfidenceConfig(r_bounds="
+                    f"({ev.min() / 25:.3g}, {ev.max() * 25:.3g}))) or adaptive_noise=False")
         diag = np.diag(self.Q)
         self._q_mask = diag > 0 if np.allclose(self.Q, np.diag(diag)) and np.any(diag > 0) \
             else None
@@ -267,6 +277,11 @@ class ConfidenceKalmanFilter(KalmanFilter):
     def confidence(self, z: np.ndarray, c_img: float = 1.0) -> tuple[float, float]:
         """``(C_k, D_M)`` of a candidate measurement at the current prediction (eqs. 42–43)."""
         cfg = self.config
+        if isinstance(c_img, bool) or not isinstance(c_img, (int, float, np.floating,
+                                                              np.integer)):
+            raise TypeError(f"c_img must be a number in [0, 1], got {type(c_img).__name__}")
+        if not 0.0 <= float(c_img) <= 1.0:       # NaN fails too
+            raise ValueError(f"c_img must be an image confidence in [0, 1], got {c_img!r}")
         e = np.asarray(z, dtype=float) - self.H @ self.x_prior
         S = self.innovation_covariance()
         d2 = float(e @ _inv_stack(S) @ e)
