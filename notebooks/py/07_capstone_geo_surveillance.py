@@ -637,8 +637,8 @@ if len(bp):
         f"{(clean[['ransac', 'wransac']].max(axis=1) / clean['lsq']).max():.1f}× LSQ. The "
         "fix — identify first — measured (LSQ, RMS over rows), field → catalogue-correlated → "
         "epipolar-confirmed: "
-        + " → ".join(f"{rms[k]:,.1f}″" for k in ("lsq (field)", "lsq (catalogue)",
-                                                 "lsq (confirmed)"))
+        + " → ".join(f"{rms[k]:,.1f}″" if np.isfinite(rms[k]) else "— (too few)" for k in (
+            "lsq (field)", "lsq (catalogue)", "lsq (confirmed)"))
         + f"; the orbit on the catalogue-correlated tracklets "
         f"{rms['orbit (catalogue, both stations)']:,.1f}″. Association in the cluster's field "
         f"is now wrong for {1 - bval['correct pairs, cluster field']:.2f} of its pairs "
