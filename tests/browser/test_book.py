@@ -106,7 +106,6 @@ SUBPACKAGES = tuple(sorted(
 #: pages whose figures are still shown below 80 % of their size (wider than 900 px), until
 #: their owners redraw them narrower (house style: at most ~8.2 in at 110 dpi); value: owner
 WIDE_FIGURES_XFAIL: dict[str, str] = {
-    "papers_repro/akf_star/REPORT": "P05",
 }
 MAX_NATIVE_PX = 900  # the 720 px column / 0.8
 

@@ -13,7 +13,4 @@ XFAIL: dict[str, str] = {
     # notebooks: stored before the kernel recorded the lint's verdict (2026-12-02 00:00)
     # regressed in b2e468f (legend beside the axes: 9.2 in wide); owner told 01:25, not fixed by 01:55
     "case:capstone.plot_prediction": "CAP",  # too-wide 1, small-text 10
-    # the committed PNGs predate the figure fix (quick run: 0 problems); regenerate the report
-    "report:akf_star/fig6_mean_tracking_error": "P05",  # too-wide 1 (committed PNG 1072 px)
-    "report:akf_star/fig7_success_rate": "P05",  # too-wide 1 (committed PNG 1061 px)
 }
