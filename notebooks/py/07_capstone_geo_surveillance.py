@@ -486,7 +486,9 @@ tab = pred[(pred["series"] == "catalogue") | (pred["method"] == "orbit")].pivot_
 tab
 
 # %%
-ax = C.plot_prediction(pred)
+import matplotlib.pyplot as plt
+
+ax = C.plot_prediction(pred, ax=plt.subplots(figsize=(5.6, 4.4))[1])  # legend beside: book width
 
 # %% [markdown]
 # ## Scorecard
