@@ -275,7 +275,7 @@ def plot_prediction(prediction: pd.DataFrame, *, ax: plt.Axes | None = None) -> 
     """RMS prediction error through the eclipse per station/object: notebook 01's predictors on
     the catalogue-correlated tracklets beside the orbit fit (linear axis from zero, so bar
     lengths compare)."""
-    ax = _ax(ax, (7.4, 4.6))
+    ax = _ax(ax, (5.6, 4.4))  # the legend goes beside it: the whole stays at the book's width
     title = "Prediction through the eclipse: RMS error per station and object"
     sel = prediction
     if len(prediction) and "series" in prediction.columns:

@@ -44,8 +44,8 @@ def code_hash() -> str:
         p = lib / rel
         files = sorted(p.rglob("*.py")) if p.is_dir() else [p]
         for f in files:
-            if f.name == "stored.py" and f.parent.name == "capstone":
-                continue  # this file: reading and writing, not the night
+            if f.name in ("stored.py", "figures.py") and f.parent.name == "capstone":
+                continue  # reading/writing and plotting: they do not change a night
             h.update(f.relative_to(lib).as_posix().encode())
             h.update(f.read_bytes())
     return h.hexdigest()[:16]
