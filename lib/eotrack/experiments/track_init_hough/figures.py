@@ -98,7 +98,7 @@ def plot_comparison(df: pd.DataFrame, sweep: str, metric: str,
         style = "--s" if name.startswith("angle") else "-o"
         label = {"modified Hough 3/4": "modified Hough 3/4 (paper)"}.get(name, name)
         if name == "logic 3/4" and same:
-            label = "logic 3/4 (under angle logic 3/4: equal here)"
+            label = "logic 3/4 (= angle logic here)"
         ax.plot(g[x], g[metric], style, ms=4, mfc="none" if name.startswith("angle") else None,
                 label=label)
     ax.set_xlabel("false alarms per frame" if x == "clutter" else "detection probability P_D")
@@ -123,7 +123,7 @@ def plot_comparison_grid(df: pd.DataFrame) -> Figure:
         for j, metric in enumerate(("p_correct", "false_per_frame")):
             plot_comparison(df, sweep, metric, ax=axes[j, i], legend=False)
     fig.tight_layout()
-    legend_outside(fig, where="below", ncol=3)
+    legend_outside(fig, where="below", ncol=2)
     return fig
 
 
