@@ -10,7 +10,4 @@ before the kernel recorded the lint's verdict: re-execute it).
 
 # measured by the lint on 2026-12-01 21:25 (comment: the rules each figure still fails)
 XFAIL: dict[str, str] = {
-    # notebooks: stored before the kernel recorded the lint's verdict (2026-12-02 00:00)
-    # regressed in b2e468f (legend beside the axes: 9.2 in wide); owner told 01:25, not fixed by 01:55
-    "case:capstone.plot_prediction": "CAP",  # too-wide 1, small-text 10
-}
+}  # empty since 2026-12-02 02:30: every figure case, report figure and stored notebook figure passes
