@@ -27,6 +27,7 @@ __all__ = [
     "HELDOUT_OPTS",
     "HELDOUT_SEED",
     "HELDOUT_SEED_FIRST",
+    "HELDOUT_SEED_SECOND",
     "HELDOUT_TARGETS",
     "SLUG",
     "XU_TARGETS",
@@ -532,8 +533,18 @@ HELDOUT_OPTS: dict[str, Any] = {"hold_triplets": True, "accel_triplets": True,
 #: 16.85 false tracks per scene; the density cap was changed after it (twice: the field over all
 #: detections, then causal), so later numbers on this seed are post hoc.
 HELDOUT_SEED_FIRST = 20261202
-#: the decisive held-out seed for the current code (fixed 2026-12-02 01:43 UTC, before it was drawn)
-HELDOUT_SEED = 20261204
+#: the second decisive seed (fixed 2026-12-02 01:43 UTC, before it was drawn): its run of that
+#: code (default 0.665 recall / 13.88 false, opt-ins 0.812 / 17.03, logic 3/4 0.759 / 43.83) is the
+#: result that counts for that code; from 05:55 UTC it is a development seed (the growth stage was
+#: designed on it, on 11 and on 777), so numbers on it for later code are post hoc.
+HELDOUT_SEED_SECOND = 20261204
+#: the decisive held-out seed for the code after 05:55 UTC (fixed 2026-12-02 05:55 UTC, before it
+#: was drawn, with the criterion below: the DEFAULT ``ModifiedHoughInitiator(v_min=3, v_max=240)``
+#: on 60 scenes of :class:`HeldOutConfig` at ±3 px/s² must reach recall >= 0.90 with false tracks
+#: per scene <= those of ``LogicInitiator(n=3, m=4, v_min=3, v_max=240, gate_px=10)`` on the same
+#: scenes; the times per frame of ``benchmarks/bench_track_init_hough.py`` section 2 <= 5 ms at 200
+#: and <= 50 ms at 1,000 candidates, measured at load < 2.5). Run once for the final code.
+HELDOUT_SEED = 20261207
 #: issue 27's targets on :data:`HELDOUT_SEED` (60 scenes of :class:`HeldOutConfig` at ±3 px/s²)
 HELDOUT_TARGETS: dict[str, Any] = {"recall": 0.90, "false <= logic 3/4": True,
                                    "ms per frame at 200": 5.0, "ms per frame at 1000": 50.0}
