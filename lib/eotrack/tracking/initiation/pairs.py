@@ -249,6 +249,11 @@ def occupancy_image(xy: np.ndarray, radius: float, *, cell_px: float = 1.0,
         y0 = float(p[:, 1].min()) - (n + 1) * c
         ix = np.floor((p[:, 0] - x0) / c).astype(np.int64)
         iy = np.floor((p[:, 1] - y0) / c).astype(np.int64)
+        # (min − x0)/c = n + 1 exactly on paper, but it can round to n + 0.999…: shift the
+        # origin by whole cells so that the border of empty cells is always there
+        sx, sy = max(0, n + 1 - int(ix.min())), max(0, n + 1 - int(iy.min()))
+        x0, y0 = x0 - sx * c, y0 - sy * c
+        ix, iy = ix + sx, iy + sy
     w = int(ix.max()) + n + 2
     h = int(iy.max()) + n + 2
     img = np.zeros((h, w), dtype=np.uint8)
