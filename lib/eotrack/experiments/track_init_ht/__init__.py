@@ -18,7 +18,7 @@ from __future__ import annotations
 import numpy as np
 
 from eotrack.montecarlo import TrialRunner
-from eotrack.repro import Reproduction
+from eotrack.repro import Reproduction, papers_repro_dir
 from eotrack.tracking import hypothesis as hyp
 
 from .claims import (
@@ -30,6 +30,7 @@ from .claims import (
     evaluate_fig2,
     experiment_measurement,
     experiment_table,
+    fig1_exploratory,
     fig1_measurement,
     fig1_readings,
     fig1_refutation,
@@ -78,11 +79,14 @@ from .scenario import (
 from .sequences import (
     curved_pda_predictions,
     match_tracks,
+    pool_runs,
     run_sequence,
     sequence_experiment,
     snr_sweep,
     sweep_example,
+    sweep_table,
 )
+from .stored import STORED_FILE, code_hash, read_stored, sequence_study, write_stored
 from .trials import (
     Fig1Result,
     Fig2Result,
@@ -105,12 +109,14 @@ __all__ = [
     "RUN_CONFIDENCE",
     "SEEDS",
     "SLUG",
+    "STORED_FILE",
     "SWEEP_SNR",
     "TITLE",
     "Fig1Result",
     "Fig2Result",
     "SequenceSettings",
     "TrialCounts",
+    "code_hash",
     "curved_pda_predictions",
     "eq7_ratio_floor",
     "evaluate_experiment",
@@ -119,6 +125,7 @@ __all__ = [
     "experiment_measurement",
     "experiment_table",
     "explore_figure",
+    "fig1_exploratory",
     "fig1_measurement",
     "fig1_monte_carlo",
     "fig1_readings",
@@ -141,19 +148,24 @@ __all__ = [
     "plot_measured_vs_formula",
     "plot_schematic",
     "plot_snr_sweep",
+    "pool_runs",
+    "read_stored",
     "reproduce",
     "robust_pd",
     "run_sequence",
     "run_share",
     "seeds",
     "sequence_experiment",
+    "sequence_study",
     "snr_for_recovery",
     "snr_sweep",
     "status_experiment",
     "status_fig1",
     "status_fig2",
     "sweep_example",
+    "sweep_table",
     "trial_counts",
+    "write_stored",
 ]
 
 #: The committed default run's seeds (``reproduce(seed=None)``), one per part of the run.
@@ -209,9 +221,14 @@ def reproduce(*, quick: bool = False, runner: TrialRunner | None = None,
     # ---------------------------------------------------------------- Figs. 3-7
     st = SequenceSettings.from_paper(ps)
     ex = sequence_experiment(st, n.sequences, seed=sd["sequences"], runner=runner)
-    sweep = snr_sweep(st, [ps["curved_snr"] + d for d in SWEEP_SNR], n.sweep_runs,
-                      seed=sd["sequences"], runner=runner,
-                      paper_runs=ex["runs"] if n.sweep_runs == n.sequences else None)
+    sweep, by_snr = snr_sweep(st, [ps["curved_snr"] + d for d in SWEEP_SNR], n.sweep_runs,
+                              seed=sd["sequences"], runner=runner,
+                              paper_runs=ex["runs"] if n.sweep_runs == n.sequences else None,
+                              return_runs=True)
+    if seed is None and not quick and n.sweep_runs == n.sequences:
+        # the committed run: notebook 03 reads these sequences instead of simulating them again
+        write_stored(papers_repro_dir() / SLUG / STORED_FILE, st, by_snr, n_runs=n.sequences,
+                     seed=sd["sequences"])
     claims = [evaluate_fig1(f1), evaluate_fig2(f2, min_hits=th), evaluate_experiment(ex, sweep, st)]
     # ---------------------------------------------------------------- report
     demo = run_sequence(np.random.default_rng(DEMO_SEED), st, keep=True)
@@ -265,6 +282,7 @@ def reproduce(*, quick: bool = False, runner: TrialRunner | None = None,
         "- Coverage of a target: fraction of its frames with a hit in any confirmed track "
         "assigned to it (>= half of the track's hits within 2.5 px of the truth); a track that "
         "breaks and restarts counts both segments ('tracks per target').\n"
+        f"- li_fig1, exploratory (not the status): {fig1_exploratory(f1)}\n"
         "- Beyond the paper: the initiator itself on short lattice sequences (stationary target, "
         "Bernoulli false alarms) against eqs. (12)-(13): nearest-neighbour association lets "
         "false alarms pull the gate off the target, so the true-track rate falls below P_DT "

@@ -24,8 +24,8 @@ from eotrack.tracking.initiation.temporal import TemporalContinuityInitiator
 
 from .scenario import SequenceSettings
 
-__all__ = ["curved_pda_predictions", "match_tracks", "run_sequence", "sequence_experiment",
-           "snr_sweep", "sweep_example"]
+__all__ = ["curved_pda_predictions", "match_tracks", "pool_runs", "run_sequence",
+           "sequence_experiment", "snr_sweep", "sweep_example", "sweep_table"]
 
 
 def match_tracks(tracks: list[Track], frames: list[tuple[float, np.ndarray]],
@@ -187,6 +187,20 @@ def sequence_experiment(st: SequenceSettings, n_runs: int, *,
     """
     runs = run_trials(_sequence_trial, n_runs, seed=seed, runner=runner, args=(st,),
                       desc="image sequences")
+    return pool_runs(runs, st)
+
+
+def pool_runs(runs: list[dict[str, Any]], st: SequenceSettings) -> dict[str, Any]:
+    """Pool the per-run measurements of :func:`run_sequence` (``keep=False``) into the result of
+    :func:`sequence_experiment` (the stored study of :mod:`.stored` is pooled by this too).
+
+    Raises
+    ------
+    ValueError
+        ``runs`` is empty.
+    """
+    if not runs:
+        raise ValueError("runs must hold at least one run of run_sequence")
     n_pix = st.window ** 2
     p_f = sum(r["bg_detected"] for r in runs) / sum(r["bg_pixels"] for r in runs)
     removed = 1 - sum(r["bg_clustered"] for r in runs) / max(1, sum(r["bg_detected"]
@@ -249,7 +263,8 @@ def sequence_experiment(st: SequenceSettings, n_runs: int, *,
 
 def snr_sweep(st: SequenceSettings, snrs: list[float], n_runs: int, *,
               seed: int | np.random.SeedSequence = 3, runner: TrialRunner | None = None,
-              paper_runs: list[dict[str, Any]] | None = None) -> pd.DataFrame:
+              paper_runs: list[dict[str, Any]] | None = None,
+              return_runs: bool = False) -> pd.DataFrame:
     """Recovery of the curved target versus its SNR, in the experiment's own scene.
 
     Every SNR runs the same ``n_runs`` sequences as :func:`sequence_experiment` with the same
@@ -262,22 +277,34 @@ def snr_sweep(st: SequenceSettings, snrs: list[float], n_runs: int, *,
     pandas.DataFrame
         One row per SNR: ``P_DA measured``, ``recovered runs`` (coverage ≥ 0.5),
         ``recovered share`` with its 95 % Clopper–Pearson interval (``CP low``, ``CP high``),
-        ``mean coverage``, ``false tracks / run``, ``runs``.
+        ``mean coverage``, ``false tracks / run``, ``runs``. With ``return_runs``:
+        ``(table, {SNR: runs})`` (what :mod:`.stored` keeps).
     """
-    from .claims import CURVED_COVERAGE, run_share
-
     if not isinstance(n_runs, (int, np.integer)) or isinstance(n_runs, bool) or n_runs < 1:
         raise ValueError(f"n_runs must be a positive int, got {n_runs!r}")
     if paper_runs is not None and len(paper_runs) != n_runs:
         raise ValueError(f"paper_runs has {len(paper_runs)} runs, n_runs is {n_runs}")
-    i = 1 if st.include_main else 0
-    rows = []
+    by_snr = {}
     for snr in snrs:
         if paper_runs is not None and float(snr) == float(st.curved_snr):
-            runs = paper_runs
+            by_snr[float(snr)] = paper_runs
         else:
-            runs = run_trials(_sequence_trial, n_runs, seed=seed, runner=runner,
-                              args=(replace(st, curved_snr=float(snr)),), desc=f"SNR {snr:g}")
+            by_snr[float(snr)] = run_trials(_sequence_trial, n_runs, seed=seed, runner=runner,
+                                            args=(replace(st, curved_snr=float(snr)),),
+                                            desc=f"SNR {snr:g}")
+    tab = sweep_table(by_snr, st)
+    return (tab, by_snr) if return_runs else tab
+
+
+def sweep_table(runs_by_snr: dict[float, list[dict[str, Any]]], st: SequenceSettings
+                ) -> pd.DataFrame:
+    """The table of :func:`snr_sweep` from its runs (``{SNR: runs of run_sequence}``)."""
+    from .claims import CURVED_COVERAGE, run_share
+
+    i = 1 if st.include_main else 0
+    rows = []
+    for snr, runs in runs_by_snr.items():
+        n_runs = len(runs)
         cov = np.array([r["coverage"][i] for r in runs])
         fr = np.array([r["target_frames"][i] for r in runs])
         k = int(np.sum(cov >= CURVED_COVERAGE))
