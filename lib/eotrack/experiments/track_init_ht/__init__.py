@@ -8,7 +8,8 @@ The package is split by role:
 * :mod:`.trials` — Monte Carlo of Figs. 1–2 and of the initiator;
 * :mod:`.sequences` — the image-sequence experiment (Figs. 3–7);
 * :mod:`.figures` — one plotting function per paper figure, and the Explore panel's figure;
-* :mod:`.claims` — each claim evaluated against its criterion, paper-beside-ours tables.
+* :mod:`.claims` — each claim evaluated against its criterion, paper-beside-ours tables;
+* :mod:`.stored` — the committed run's sequences, written by ``make repro`` for notebook 03.
 
 Entry point: :func:`reproduce` (``python -m eotrack.repro track_init_ht``).
 """
