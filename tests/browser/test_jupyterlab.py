@@ -6,6 +6,11 @@ For each ``notebooks/0[1-9]*.ipynb`` (a copy in a temporary tree shaped like the
 - no error and no stderr output anywhere (cell outputs and the panels' output widgets; Python
   warnings go to stderr, so a warning fails too — its text is in the failure message);
 - no stray ``<function ...>`` or ``(<Figure size ...>`` text;
+- every cell nbval checks (``# NBVAL_CHECK_OUTPUT``) has the stored notebook's outputs, compared
+  as nbval compares them (``stored_outputs.py``: nbval's own stream joining, sanitizers and
+  comparison); ``.ci/run`` runs this stage with AVX-512 off where the host has it, which makes
+  this the AVX-512-off comparison of the lessons. The kernel must see this process's
+  ``.ci/avx512_off.py`` variables, and numpy in it must report those targets off;
 - every panel (``.eotrack-panel``, and ``.widget-interact`` for notebooks not yet converted):
   move each of its controls ``$EOTRACK_BROWSER_MOVES`` times (default 3; slider: one step
   right, then back left, ...; dropdown: the next option, as many times as it has options if
@@ -18,13 +23,16 @@ For each ``notebooks/0[1-9]*.ipynb`` (a copy in a temporary tree shaped like the
   front end's share of every other row.
 
 Notebooks run in one JupyterLab server, ``$EOTRACK_BROWSER_PARALLEL`` at a time (default 2),
-each in its own tab; the panels are timed afterwards, one notebook at a time, with every other
-kernel idle.
+each in its own tab, longest first (``tests/file_durations.json``); the panels are timed
+afterwards, one notebook at a time, with every other kernel idle.
+``EOTRACK_BROWSER_NOTEBOOKS="02_epipolar_association 00_index"`` limits the notebooks (of these
+tests and of the open-and-save ones) to those stems, for development.
 
 ``test_open_save_keeps_files`` opens each stored notebook (and a small panel notebook executed
 by ``.ci/execute_notebooks.py``) with its ``.py`` twin and the repository's jupytext pairing,
 and saves it with Ctrl+S: neither file may change, and the notebook must not be marked
-modified on open.
+modified on open (once its kernel's info and spec are in). All are opened, one after the other,
+in one JupyterLab page.
 
 Needs Debian's ``chromium`` (``apt-get install chromium``) and the ``playwright`` Python package
 (driving that Chromium through ``executable_path``; ``playwright install`` is never used, it
@@ -49,12 +57,30 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 import pytest
+from stored_outputs import compare_cells
 
 pytestmark = pytest.mark.browser
 
 ROOT = Path(__file__).resolve().parents[2]
-NOTEBOOKS = sorted((ROOT / "notebooks").glob("0[1-9]*.ipynb"))
-STORED = sorted((ROOT / "notebooks").glob("[0-9]*.ipynb"))  # the index too
+# EOTRACK_BROWSER_NOTEBOOKS="02_epipolar_association 00_index": only these (stems; development)
+_ONLY = set(os.environ.get("EOTRACK_BROWSER_NOTEBOOKS", "").replace(",", " ").split())
+NOTEBOOKS = [p for p in sorted((ROOT / "notebooks").glob("0[1-9]*.ipynb"))
+             if not _ONLY or p.stem in _ONLY]
+STORED = [p for p in sorted((ROOT / "notebooks").glob("[0-9]*.ipynb"))  # the index too
+          if not _ONLY or p.stem in _ONLY]
+# the variables .ci/avx512_off.py may set; the kernels must see the same values as this process
+AVX512_OFF_VARS = ("NPY_DISABLE_CPU_FEATURES", "OPENBLAS_CORETYPE", "OPENCV_CPU_DISABLE")
+KERNEL_CPU_CHECK = """\
+import json, os
+try:
+    from numpy._core._multiarray_umath import __cpu_features__ as f
+except ImportError:
+    from numpy.core._multiarray_umath import __cpu_features__ as f
+names = os.environ.get("NPY_DISABLE_CPU_FEATURES", "").split()
+print(json.dumps({"env": {k: os.environ.get(k) for k in VARS},
+                  "off": [n for n in names if not f.get(n)],
+                  "still_on": [n for n in names if f.get(n)]}))
+""".replace("VARS", repr(AVX512_OFF_VARS))
 CHROMIUM_FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic",
                   "--no-first-run", "--disable-background-networking",
                   "--disable-component-update", "--disable-sync"]
@@ -94,6 +120,20 @@ JS_SETTLED = """([panel, before]) => {
   const k = p.sessionContext.session.kernel;
   if (src && src !== before && k.status === 'idle') return performance.now();
   return false;
+}"""
+JS_CELLS = """() => window.jupyterapp.shell.currentWidget.content.widgets
+  .filter(c => c.model.type === 'code')
+  .map(c => ({source: c.model.sharedModel.getSource(), outputs: c.model.outputs.toJSON()}))"""
+JS_KERNEL_RUN = """async (code) => {
+  const k = window.jupyterapp.shell.currentWidget.sessionContext.session.kernel;
+  let out = '';
+  const f = k.requestExecute({code, store_history: false});
+  f.onIOPub = m => {
+    if (m.header.msg_type === 'stream') out += m.content.text;
+    if (m.header.msg_type === 'error') out += m.content.ename + ': ' + m.content.evalue;
+  };
+  await f.done;
+  return out;
 }"""
 JS_TOP_PANELS = """(sel) => Array.from(document.querySelectorAll(sel))
   .filter(el => !(el.parentElement && el.parentElement.closest(sel)))
@@ -234,7 +274,11 @@ def _selected(request) -> list[str]:
 @pytest.fixture(scope="module")
 def runs(request, browser, lab, run_rows) -> dict[str, Run]:
     """Open the selected notebooks and run all their cells, PARALLEL tabs at a time."""
-    queue = [Run(n) for n in _selected(request)]
+    # longest first (seconds per notebook from tests/file_durations.json, `make durations`): the
+    # two tabs finish together instead of one long notebook running alone at the end
+    seconds = json.loads((ROOT / "tests" / "file_durations.json").read_text())["seconds"]
+    queue = [Run(n) for n in sorted(_selected(request),
+                                    key=lambda n: -seconds.get(f"notebooks/{n}", 1e9))]
     active: list[Run] = []
     done: dict[str, Run] = {}
     t_all = time.perf_counter()
@@ -253,7 +297,7 @@ def runs(request, browser, lab, run_rows) -> dict[str, Run]:
             except Exception as exc:
                 r.error = f"could not open and start {r.name}: {exc}"
                 done[r.name] = r
-        time.sleep(1.0)
+        time.sleep(0.5)
         for r in list(active):
             st = r.page.evaluate(JS_STATUS) or {}
             now = time.perf_counter()
@@ -261,9 +305,12 @@ def runs(request, browser, lab, run_rows) -> dict[str, Run]:
             if busy or st != r.status:
                 r.quiet = now
             r.status = st
-            finished = not busy and now - r.quiet > 3.0
+            # every cell run and the kernel idle: done (one more poll to see it stays so); an
+            # error stops the run with cells unrun: done after 3 s without change
+            wait = 0.4 if st.get("total") and st.get("done") == st.get("total") else 3.0
+            finished = not busy and now - r.quiet > wait
             if finished or now - r.started > RUN_TIMEOUT_S:
-                r.seconds = now - r.started - (3.0 if finished else 0.0)
+                r.seconds = now - r.started - (wait if finished else 0.0)
                 if not finished:
                     r.error = f"{r.name}: still running after {RUN_TIMEOUT_S:.0f} s ({st})"
                 active.remove(r)
@@ -435,6 +482,26 @@ def _panel_latencies(page, notebook: str, rows: list[dict]) -> list[str]:
     return problems
 
 
+def _kernel_cpu_problems(page, notebook: str) -> list[str]:
+    """The notebook's kernel sees this process's AVX-512-off variables, and numpy in it
+    reports the named dispatch targets off (as .ci/run checks in its own process)."""
+    try:
+        info = json.loads(page.evaluate(JS_KERNEL_RUN, KERNEL_CPU_CHECK))
+    except Exception as exc:
+        return [f"could not read the kernel's CPU features: {exc}"]
+    want = {k: os.environ.get(k) for k in AVX512_OFF_VARS}
+    problems = []
+    if info["env"] != want:
+        problems.append(f"the kernel's environment {info['env']} is not this process's {want}")
+    if info["still_on"]:
+        problems.append(f"numpy in the kernel still uses {info['still_on']}: "
+                        "NPY_DISABLE_CPU_FEATURES had no effect")
+    if want["NPY_DISABLE_CPU_FEATURES"]:
+        print(f"\n[browser] {notebook}: kernel numpy reports switched off: "
+              f"{' '.join(info['off']) or 'nothing'}")
+    return problems
+
+
 @pytest.mark.parametrize("notebook", [p.name for p in NOTEBOOKS])
 def test_notebook_runs_and_panels_redraw(notebook, runs, latency_rows):
     r = runs[notebook]
@@ -446,6 +513,10 @@ def test_notebook_runs_and_panels_redraw(notebook, runs, latency_rows):
         problems.append(f"only {st.get('done')} of {st.get('total')} code cells ran "
                         "(an error stopped the run?)")
     problems += _output_problems(r.page)
+    # the text of every NBVAL_CHECK_OUTPUT cell against the stored notebook, as nbval compares
+    # it (with AVX-512 off where .ci/run exported .ci/avx512_off.py's variables)
+    problems += compare_cells(ROOT / "notebooks" / notebook, r.page.evaluate(JS_CELLS))
+    problems += _kernel_cpu_problems(r.page, notebook)
     problems += _panel_latencies(r.page, notebook, latency_rows)
     problems += [f"after moving the panels: {p}" for p in _output_problems(r.page)
                  if p not in problems]
@@ -526,8 +597,50 @@ def _hygiene_fails() -> bool:
     return bool(m) and m.group(1) == "True"
 
 
+# open a notebook in the page's JupyterLab, as the file browser does; its panel's id
+JS_OPEN_DOC = """async (path) => {
+  const w = await window.jupyterapp.commands.execute('docmanager:open',
+                                                     {path, factory: 'Notebook'});
+  await w.context.ready;
+  await w.sessionContext.ready;
+  return w.id;
+}"""
+# the kernel's info and spec in (JupyterLab writes language_info and kernelspec from them),
+# then a moment for the model to take them: is the notebook marked modified?
+JS_OPENED = """async () => {
+  const w = window.jupyterapp.shell.currentWidget;
+  const k = w.sessionContext.session && w.sessionContext.session.kernel;
+  if (k) { await k.info; await k.spec; }
+  await new Promise(r => setTimeout(r, 500));
+  return w.context.model.dirty;
+}"""
+JS_LAST_MODIFIED = """() => {
+  const c = window.jupyterapp.shell.currentWidget.context;
+  return c.contentsModel ? c.contentsModel.last_modified : null;
+}"""
+JS_CLOSE_DOC = """async () => {
+  const w = window.jupyterapp.shell.currentWidget;
+  if (!w || !w.sessionContext) return;
+  await w.sessionContext.shutdown();
+  w.dispose();
+}"""
+
+
+@pytest.fixture(scope="module")
+def save_page(browser, lab):
+    """One JupyterLab page for every open-and-save round trip (each opens its notebook in it,
+    as from the file browser, and closes it after)."""
+    page = browser.new_page(viewport={"width": 1400, "height": 1000})
+    page.set_default_timeout(120_000)
+    page.goto(f"{lab.base}/lab/workspaces/roundtrip?reset&token={TOKEN}")
+    page.wait_for_function("() => window.jupyterapp && window.jupyterapp.shell")
+    page.evaluate("async () => { await window.jupyterapp.restored; }")
+    yield page
+    page.close()
+
+
 @pytest.mark.parametrize("which", ["panel", *(f"stored:{p.name}" for p in STORED)])
-def test_open_save_keeps_files(which, browser, lab, monkeypatch):
+def test_open_save_keeps_files(which, save_page, lab, monkeypatch):
     """Ctrl+S in JupyterLab changes neither file of a notebook's pair (so `git status` stays clean).
 
     ``panel``: a small solutions notebook with a panel, executed by .ci/execute_notebooks.py
@@ -562,20 +675,23 @@ def test_open_save_keeps_files(which, browser, lab, monkeypatch):
     before = {f: f.read_bytes() for f in (ipynb, py)}
     mtime = ipynb.stat().st_mtime_ns
     rel = ipynb.relative_to(lab.work).as_posix()
-    page = _open(browser, lab, rel, repo.name)
+    page = save_page
     try:
-        page.wait_for_timeout(2000)
-        dirty_on_open = page.evaluate(JS_STATUS)["dirty"]
-        page.locator(".jp-NotebookPanel .jp-Notebook").first.click(position={"x": 5, "y": 5})
+        wid = page.evaluate(JS_OPEN_DOC, rel)
+        page.wait_for_function(f"({JS_STATUS})() && ({JS_STATUS})().kernel === 'idle'",
+                               timeout=180_000)
+        dirty_on_open = page.evaluate(JS_OPENED)
+        lm0 = page.evaluate(JS_LAST_MODIFIED)
+        page.locator(f"[id='{wid}'] .jp-Notebook").click(position={"x": 5, "y": 5})
         page.keyboard.press("Control+s")
-        deadline = time.time() + 60
-        while ipynb.stat().st_mtime_ns == mtime and time.time() < deadline:
-            page.wait_for_timeout(250)
+        try:  # the server has written both files of the pair when it answers the save
+            page.wait_for_function(f"(lm0) => ({JS_LAST_MODIFIED})() !== lm0 && "
+                                   f"!({JS_STATUS})().dirty", arg=lm0, timeout=60_000)
+        except Exception:
+            pass
         saved = ipynb.stat().st_mtime_ns != mtime
-        page.wait_for_timeout(1000)
-        page.evaluate("() => window.jupyterapp.shell.currentWidget.sessionContext.shutdown()")
     finally:
-        page.close()
+        page.evaluate(JS_CLOSE_DOC)
     problems = [] if saved else ["Ctrl+S did not save the notebook"]
     if dirty_on_open:
         problems.append("JupyterLab marked the notebook modified on open")
