@@ -213,3 +213,148 @@ def test_describe_figure():
     assert describe_figure(fig) == "Figure: Both — left; right"
     with pytest.raises(TypeError, match="fig must be"):
         describe_figure(a)
+
+
+# --- blind spots of the first lint (review of issue 23): each test fails on the old rules ---
+
+def test_multi_line_text_overlaps_line_by_line():
+    """A text with a line break is measured line by line (the renderer draws it line by line,
+    and the first lint saw none of it): 'target' over the second line of 'long\\ngate'."""
+    fig, ax = _clean()
+    ax.text(5, 10, "target", ha="center", va="bottom", fontsize=10)
+    ax.text(5, 10.3, "long\ngate", ha="center", va="top", fontsize=10)
+    msgs = [p.message for p in lint_figure(fig) if p.rule == "overlapping-text"]
+    assert msgs and "a line of 'long gate'" in msgs[0]
+
+
+def test_multi_line_text_with_a_short_line_is_not_its_bounding_box():
+    """Per-line rectangles: a label beside the short second line of a text does not overlap
+    it, although it lies inside the text's bounding box."""
+    fig, ax = _clean()
+    ax.text(1, 15, "a long first line here\nshort", ha="left", va="top", fontsize=10)
+    t = ax.text(1, 15, "short", ha="left", va="top", fontsize=10)
+    fig.canvas.draw()
+    r = fig.canvas.get_renderer()
+    bb = t.get_window_extent(r)
+    ax.text(ax.transData.inverted().transform((bb.x1 + 40, 0))[0],
+            ax.transData.inverted().transform((0, bb.y0 - bb.height * 1.3))[1], "beside",
+            ha="left", va="bottom", fontsize=10)
+    t.remove()
+    assert "overlapping-text" not in _rules(fig)
+
+
+def test_outlined_text_is_seen():
+    """Text with an outline (path effects) bypasses the renderer's draw_text: still linted."""
+    import matplotlib.patheffects as pe
+
+    fig, ax = _clean()
+    ax.text(2, 5, "outlined", fontsize=MIN_FONT_PT - 1,
+            path_effects=[pe.withStroke(linewidth=3, foreground="white")])
+    assert "small-text" in _rules(fig)
+    ax.text(2.05, 5.05, "over it", fontsize=10,
+            path_effects=[pe.withStroke(linewidth=3, foreground="white")])
+    assert "overlapping-text" in _rules(fig)
+
+
+def test_small_multi_line_bar_labels():
+    """Bar labels with a line break at 7 pt (01's budget bars) are small text."""
+    fig, ax = plt.subplots()
+    bars = ax.bar([0, 1], [3, 4], **method_style("lsq").bar())
+    ax.bar_label(bars, labels=["LSQ\n62 %", "RANSAC\n25 %"], fontsize=7)
+    label_axes(ax, x="method", y="share", yunit="%", title="budget")
+    assert "small-text" in _rules(fig)
+
+
+def test_clipped_text():
+    """A clip_on text running past its axes is cut off in the saved figure."""
+    fig, ax = _clean()
+    ax.text(9.5, 5, "a label that runs past the edge", clip_on=True, fontsize=10)
+    assert "clipped-text" in _rules(fig)
+    fig, ax = _clean()
+    ax.text(9.5, 5, "a label that runs past the edge", fontsize=10)  # not clipped: shown
+    assert "clipped-text" not in _rules(fig)
+
+
+def test_unkeyed_bars_scatter_lists_and_bands():
+    """Colour-coded bars, a scatter with one colour per point and filled bands need a key."""
+    fig, ax = plt.subplots()
+    ax.bar([0, 1], [1, 2], color=["#E69F00", "#0072B2"])
+    label_axes(ax, x="x", y="y", title="bars")
+    assert "unkeyed-colours" in _rules(fig)
+    fig, ax = plt.subplots()
+    ax.scatter([0, 1, 2, 3], [0, 1, 0, 1], c=["#009E73", "#D55E00"] * 2)
+    label_axes(ax, x="x", y="y", title="pairs")
+    assert "unkeyed-colours" in _rules(fig)
+    fig, ax = plt.subplots()
+    ax.fill_between([0, 1], 0, 1, color="#56B4E9")
+    ax.fill_between([0, 1], 1, 2, color="#CC79A7")
+    label_axes(ax, x="x", y="y", title="bands")
+    assert "unkeyed-colours" in _rules(fig)
+    ax.fill_between([], [], [], color="#56B4E9", label="inner")
+    ax.fill_between([], [], [], color="#CC79A7", label="outer")
+    legend_outside(ax)
+    assert "unkeyed-colours" not in _rules(fig)
+
+
+def test_legend_over_bands_and_error_bars():
+    """A legend over a filled band (fill_between) or over error bars covers data."""
+    for draw in (lambda ax: ax.fill_between(np.arange(10), 0, 10, label="band", alpha=0.3),
+                 lambda ax: ax.errorbar(np.arange(10), np.full(10, 5.0), yerr=1, fmt="none",
+                                        label="error bars")):
+        fig, ax = plt.subplots()
+        draw(ax)
+        label_axes(ax, x="x", y="y", title="t")
+        ax.legend(loc="center")
+        assert "legend-covers-data" in _rules(fig)
+        legend_outside(ax)
+        assert "legend-covers-data" not in _rules(fig)
+
+
+def test_red_green_pairs_in_the_same_style():
+    """Red vs green in the same style is one colour to a deuteranope (02's Fig. 4)."""
+    fig, ax = plt.subplots()
+    ax.plot([0, 1], [0, 1], color="tab:green", ls="-", marker="", label="correct pair")
+    ax.plot([0, 1], [1, 0], color="tab:red", ls="-", marker="", label="false pair")
+    label_axes(ax, x="x", y="y", title="pairs")
+    legend_outside(ax)
+    assert "same-style" in _rules(fig)
+    fig, ax = plt.subplots()
+    ax.plot([0, 1], [0, 1], color="tab:green", ls="-", marker="", label="correct pair")
+    ax.plot([0, 1], [1, 0], color="tab:red", ls="--", marker="", label="false pair")
+    label_axes(ax, x="x", y="y", title="pairs")
+    legend_outside(ax)
+    assert "same-style" not in _rules(fig)
+    fig, ax = plt.subplots()  # bands in the same hatch
+    ax.fill_between([0, 1], 0, 1, color="tab:green", label="correct")
+    ax.fill_between([0, 1], 1, 2, color="tab:red", label="false")
+    label_axes(ax, x="x", y="y", title="bands")
+    legend_outside(ax)
+    assert "same-style" in _rules(fig)
+
+
+def test_okabe_ito_pairs_pass_the_deuteranopia_check():
+    from eotrack.plotting.lint import _look_alike_deutan
+    from matplotlib.colors import to_rgba
+
+    oi = ["#000000", "#E69F00", "#56B4E9", "#009E73", "#F0E442", "#0072B2", "#D55E00",
+          "#CC79A7"]
+    assert not any(_look_alike_deutan(to_rgba(a), to_rgba(b)) for a in oi for b in oi if a != b)
+    assert _look_alike_deutan(to_rgba("tab:red"), to_rgba("tab:green"))
+
+
+def test_computer_notation_tick_labels():
+    """'1e−03' is not how a decade reads (log or linear axis, tick label or offset text)."""
+    from matplotlib.ticker import FuncFormatter
+
+    fig, ax = _clean()
+    ax.set_yscale("log")
+    ax.set_ylim(1e-3, 10)
+    ax.yaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:.0e}".replace("-", "−")))
+    assert "log-labels" in _rules(fig)
+    log_axis(ax, "y")
+    assert "log-labels" not in _rules(fig)
+    fig, ax = plt.subplots()
+    ax.plot([0, 1], [1e-3, 2e-3])
+    ax.yaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:.1e}"))
+    label_axes(ax, x="x", y="y", title="linear")
+    assert "log-labels" in _rules(fig)  # '1.0e-03' on a linear axis too

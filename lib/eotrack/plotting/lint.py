@@ -7,12 +7,13 @@ drawn, and checks the rules listed in the package docstring. Each problem is a
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 from matplotlib.backends.backend_agg import FigureCanvasAgg
-from matplotlib.collections import PathCollection
+from matplotlib.collections import Collection, PathCollection
 from matplotlib.colors import to_rgba
 from matplotlib.container import BarContainer
 from matplotlib.figure import Figure
@@ -27,7 +28,7 @@ from .style import BOOK_WIDTH_IN, MIN_FONT_PT
 __all__ = ["RULES", "FigureProblem", "effective_font_scale", "lint_figure"]
 
 #: The lint's rules, in the order they are checked.
-RULES = ("overlapping-text", "legend-covers-data", "axis-label", "small-text", "title",
+RULES = ("overlapping-text", "clipped-text", "legend-covers-data", "axis-label", "small-text", "title",
          "same-style", "unkeyed-colours", "log-labels", "too-wide")
 
 #: A figure is shown at no less than this share of its size in the book (the browser shrinks a
@@ -76,23 +77,65 @@ def saved_width_in(fig: Figure, renderer: Any) -> float:
     return float(w)
 
 
-def _draw_recording(fig: Figure) -> tuple[Any, list[Text]]:
+@dataclass(frozen=True)
+class _Line:
+    """One drawn line of a text: the artist, the line's string and its rotated rectangle
+    (4×2 display coordinates), measured from the renderer's layout of that very draw."""
+
+    text: Text
+    line: str
+    rect: np.ndarray
+
+
+def _line_rects(t: Text, renderer: Any) -> list[_Line]:
+    """Per-line rectangles of ``t`` as :meth:`Text.draw` places them (a multi-line label is
+    several lines, each as wide as its own string; rotation kept)."""
+    _, info, _ = t._get_layout(renderer)
+    x, y = t.get_unitless_position()
+    posx, posy = t.get_transform().transform((x, y))
+    if not (np.isfinite(posx) and np.isfinite(posy)):
+        return []
+    th = np.radians(t.get_rotation())
+    rot = np.array([[np.cos(th), -np.sin(th)], [np.sin(th), np.cos(th)]])
+    out = []
+    for line, (w, a, d), (lx, ly) in info:
+        if not line.strip() or w <= 0:
+            continue
+        box = np.array([[0.0, -d], [w, -d], [w, a], [0.0, a]])
+        out.append(_Line(t, line, box @ rot.T + np.array([lx + posx, ly + posy])))
+    return out
+
+
+def _draw_recording(fig: Figure) -> tuple[Any, list[Text], list[_Line]]:
+    """Draw ``fig`` once with Agg and record every text actually drawn, with its lines.
+
+    Recorded at :meth:`Text.draw` (not at the renderer's ``draw_text``, which sees no artist
+    for a multi-line text and is bypassed by path effects such as an outline)."""
     canvas = fig.canvas if isinstance(fig.canvas, FigureCanvasAgg) else FigureCanvasAgg(fig)
     renderer = canvas.get_renderer()
     drawn: dict[int, Text] = {}
-    original = renderer.draw_text
+    lines: dict[int, list[_Line]] = {}
+    original = Text.draw
 
-    def record(gc, x, y, s, prop, angle, ismath=False, mtext=None):
-        if mtext is not None and s.strip():
-            drawn.setdefault(id(mtext), mtext)
-        return original(gc, x, y, s, prop, angle, ismath=ismath, mtext=mtext)
+    def record(self, rend, *args, **kw):
+        if (self.get_visible() and self.get_text().strip() and id(self) not in drawn
+                and to_rgba(self.get_color(), self.get_alpha())[3] > 0):
+            try:
+                ls = _line_rects(self, rend)
+            except Exception:  # a text the layout cannot measure is not checked
+                ls = []
+            if ls:
+                drawn[id(self)] = self
+                lines[id(self)] = ls
+        return original(self, rend, *args, **kw)
 
-    renderer.draw_text = record
+    Text.draw = record
     try:
         fig.draw(renderer)
     finally:
-        del renderer.draw_text
-    return renderer, list(drawn.values())
+        Text.draw = original
+    texts = list(drawn.values())
+    return renderer, texts, [ln for t in texts for ln in lines[id(t)]]
 
 
 def _describe(t: Text) -> str:
@@ -100,25 +143,11 @@ def _describe(t: Text) -> str:
     return repr(s if len(s) <= 40 else s[:37] + "…")
 
 
-def _rect(t: Text, renderer: Any) -> np.ndarray:
-    """The text's rotated rectangle (4×2 display coordinates)."""
-    bb = t.get_window_extent(renderer)
-    angle = t.get_rotation() % 180
-    c = np.array([(bb.x0 + bb.x1) / 2, (bb.y0 + bb.y1) / 2])
-    if min(angle, 180 - angle) < 1 or abs(angle - 90) < 1:
-        hw, hh = bb.width / 2, bb.height / 2
-        return c + np.array([[-hw, -hh], [hw, -hh], [hw, hh], [-hw, hh]])
-    rot = t.get_rotation()
-    t.set_rotation(0)
-    try:
-        b0 = t.get_window_extent(renderer)
-    finally:
-        t.set_rotation(rot)
-    th = np.radians(rot)
-    R = np.array([[np.cos(th), -np.sin(th)], [np.sin(th), np.cos(th)]])
-    hw, hh = b0.width / 2, b0.height / 2
-    corners = np.array([[-hw, -hh], [hw, -hh], [hw, hh], [-hw, hh]])
-    return c + corners @ R.T
+def _describe_line(ln: _Line) -> str:
+    whole = ln.text.get_text()
+    s = ln.line if "\n" in whole else whole
+    s = repr(s if len(s) <= 40 else s[:37] + "…")
+    return s + (f" (a line of {_describe(ln.text)})" if "\n" in whole else "")
 
 
 def _overlap(p: np.ndarray, q: np.ndarray, tol: float = 1.0) -> bool:
@@ -137,14 +166,65 @@ def _overlap(p: np.ndarray, q: np.ndarray, tol: float = 1.0) -> bool:
     return True
 
 
-def _check_overlaps(texts: list[Text], renderer: Any) -> list[FigureProblem]:
-    rects = [(t, _rect(t, renderer)) for t in texts]
-    out = []
-    for i, (t, p) in enumerate(rects):
-        for u, q in rects[i + 1:]:
-            if _overlap(p, q):
-                out.append(FigureProblem("overlapping-text",
-                                         f"{_describe(t)} overlaps {_describe(u)}"))
+def _check_overlaps(lines: list[_Line]) -> list[FigureProblem]:
+    """Lines of two different texts whose rectangles overlap (each pair of texts once)."""
+    if len(lines) < 2:
+        return []
+    rects = np.array([ln.rect for ln in lines])
+    lo, hi = rects.min(axis=1), rects.max(axis=1)
+    owner = np.array([id(ln.text) for ln in lines])
+    out, seen = [], set()
+    for i in range(len(lines) - 1):
+        cand = np.nonzero((lo[i + 1:, 0] < hi[i, 0] - 1) & (hi[i + 1:, 0] > lo[i, 0] + 1)
+                          & (lo[i + 1:, 1] < hi[i, 1] - 1) & (hi[i + 1:, 1] > lo[i, 1] + 1)
+                          & (owner[i + 1:] != owner[i]))[0] + i + 1
+        for j in cand:
+            pair = (min(owner[i], owner[j]), max(owner[i], owner[j]))
+            if pair in seen or not _overlap(rects[i], rects[j]):
+                continue
+            seen.add(pair)
+            out.append(FigureProblem("overlapping-text", f"{_describe_line(lines[i])} overlaps "
+                                     f"{_describe_line(lines[j])}"))
+    return out
+
+
+def _shown_area(fig: Figure, renderer: Any) -> Any:
+    """The part of the canvas that is saved (display px): the tight box plus its padding when
+    ``savefig.bbox`` is tight (as the notebooks and ``savefig`` save), else the whole figure."""
+    import matplotlib as mpl
+    from matplotlib.transforms import Bbox
+
+    if mpl.rcParams["savefig.bbox"] != "tight":
+        return fig.bbox
+    bb = fig.get_tightbbox(renderer)
+    pad = mpl.rcParams["savefig.pad_inches"]
+    pad = float(pad) if pad != "layout" else 0.0
+    return Bbox.from_extents(bb.x0 - pad, bb.y0 - pad, bb.x1 + pad, bb.y1 + pad).transformed(
+        fig.dpi_scale_trans)
+
+
+def _check_clipped(fig: Figure, lines: list[_Line], renderer: Any) -> list[FigureProblem]:
+    """Text cut off: a line reaching past its clip box (``clip_on`` text near an axes edge)
+    or past the saved area of the figure (e.g. a legend placed outside and left out of the
+    tight box)."""
+    shown = _shown_area(fig, renderer)
+    out, seen = [], set()
+    for ln in lines:
+        if id(ln.text) in seen:
+            continue
+        x0, y0 = ln.rect.min(axis=0)
+        x1, y1 = ln.rect.max(axis=0)
+        boxes = [("the figure's edge", shown)]
+        clip = ln.text.get_clip_box() if ln.text.get_clip_on() else None
+        if clip is not None:
+            boxes.append(("its axes (clip_on)", clip))
+        for where, bb in boxes:
+            cut = max(bb.x0 - x0, x1 - bb.x1, bb.y0 - y0, y1 - bb.y1)
+            if cut > 1.5:
+                seen.add(id(ln.text))
+                out.append(FigureProblem("clipped-text", f"{_describe_line(ln)} is cut off by "
+                                         f"{where} ({cut:.0f} px)"))
+                break
     return out
 
 
@@ -207,12 +287,16 @@ def _check_labels(fig: Figure) -> list[FigureProblem]:
     return out
 
 
+def _c(v: Any) -> tuple | None:
+    try:
+        return tuple(np.round(to_rgba(v), 2))
+    except (ValueError, TypeError):
+        return None
+
+
 def _style_key(h: Any) -> tuple | None:
-    def c(v):
-        try:
-            return tuple(np.round(to_rgba(v), 2))
-        except (ValueError, TypeError):
-            return None
+    """``(kind, colour, the rest of the style…)`` of a legend handle; ``None`` if unknown."""
+    c = _c
     if isinstance(h, Line2D):
         ls = h.get_linestyle()
         ls = "none" if ls in ("None", "none", " ", "") else ls
@@ -233,12 +317,56 @@ def _style_key(h: Any) -> tuple | None:
     if isinstance(h, Patch):
         return ("patch", c(h.get_facecolor()), c(h.get_edgecolor()) if h.get_hatch() else None,
                 h.get_hatch() or "")
+    if isinstance(h, Collection):  # fill_between, vlines, …
+        fc, ec = h.get_facecolor(), h.get_edgecolor()
+        filled = len(fc) and to_rgba(fc[0])[3] > 0
+        col = c(fc[0]) if filled else (c(ec[0]) if len(ec) else None)
+        return ("collection", col, "filled" if filled else "edge", h.get_hatch() or "",
+                str(h.get_linestyle()[0] if len(h.get_linestyle()) else ""))
     if hasattr(h, "lines") and h.lines and isinstance(h.lines[0], Line2D):  # errorbar
         return _style_key(h.lines[0])
     return None
 
 
+#: Deuteranopia (severity 1) in linear RGB, Machado, Oliveira & Fernandes (2009).
+_DEUTAN = np.array([[0.367322, 0.860646, -0.227968],
+                    [0.280085, 0.672501, 0.047413],
+                    [-0.011820, 0.042940, 1.042940]])
+#: Two colours closer than this (CIELAB ΔE) look alike (the Okabe–Ito pairs are ≥ 17 apart
+#: under deuteranopia; matplotlib's default red and green, 7).
+CVD_DELTA_E = 12.0
+
+
+def _lab(rgb: np.ndarray) -> np.ndarray:
+    """sRGB (…×3, 0–1) → CIELAB (D65)."""
+    lin = np.where(rgb <= 0.04045, rgb / 12.92, ((rgb + 0.055) / 1.055) ** 2.4)
+    m = np.array([[0.4124, 0.3576, 0.1805], [0.2126, 0.7152, 0.0722], [0.0193, 0.1192, 0.9505]])
+    xyz = lin @ m.T / np.array([0.95047, 1.0, 1.08883])
+    f = np.where(xyz > (6 / 29) ** 3, np.cbrt(xyz), xyz / (3 * (6 / 29) ** 2) + 4 / 29)
+    return np.stack([116 * f[..., 1] - 16, 500 * (f[..., 0] - f[..., 1]),
+                     200 * (f[..., 1] - f[..., 2])], axis=-1)
+
+
+def deuteranopia(rgb: Any) -> np.ndarray:
+    """A colour (or …×3 array of sRGB colours) as a deuteranope sees it (sRGB, 0–1)."""
+    rgb = np.clip(np.asarray(to_rgba(rgb)[:3] if np.ndim(rgb) == 0 or isinstance(rgb, str)
+                             else rgb, dtype=float)[..., :3], 0, 1)
+    lin = np.where(rgb <= 0.04045, rgb / 12.92, ((rgb + 0.055) / 1.055) ** 2.4)
+    sim = np.clip(lin @ _DEUTAN.T, 0, 1)
+    return np.where(sim <= 0.0031308, 12.92 * sim, 1.055 * sim ** (1 / 2.4) - 0.055)
+
+
+def _look_alike_deutan(c1: tuple, c2: tuple) -> bool:
+    """Two different colours a deuteranope cannot tell apart (ΔE < :data:`CVD_DELTA_E`)."""
+    if c1 == c2:
+        return False
+    d = _lab(deuteranopia(np.array([c1[:3], c2[:3]])))
+    return float(np.linalg.norm(d[0] - d[1])) < CVD_DELTA_E
+
+
 def _check_same_style(fig: Figure) -> list[FigureProblem]:
+    """Two legend entries with the same colour and style, or whose colours differ only for
+    normal colour vision (a deuteranope sees the same colour) and whose style is the same."""
     out = []
     groups: list[tuple[str, list, list]] = []
     for i, ax in enumerate(_data_axes(fig)):
@@ -256,6 +384,15 @@ def _check_same_style(fig: Figure) -> list[FigureProblem]:
             if key in seen and seen[key] != lab:
                 out.append(FigureProblem("same-style", f"{where}: {seen[key]!r} and {lab!r} "
                                          f"have the same colour and style"))
+            elif key not in seen:
+                for k2, lab2 in seen.items():
+                    if (k2[0] == key[0] and k2[2:] == key[2:] and lab2 != lab
+                            and _look_alike_deutan(k2[1], key[1])):
+                        out.append(FigureProblem(
+                            "same-style", f"{where}: {lab2!r} and {lab!r} have the same style "
+                            f"and colours a deuteranope cannot tell apart (red vs green); give "
+                            f"one another line style, marker or hatch"))
+                        break
             seen.setdefault(key, lab)
     return out
 
@@ -267,9 +404,19 @@ def _hue_key(rgba: Any) -> tuple | None:
     return (round(r, 1), round(g, 1), round(b, 1))
 
 
+def _collection_colours(col: Collection) -> list:
+    """The colours a collection shows: every face colour (a scatter with a list of colours
+    has one per point), or the edge colours of an unfilled one."""
+    fc = np.asarray(col.get_facecolor())
+    if len(fc) and (fc[:, 3] > 0).any():
+        return list(fc[fc[:, 3] > 0])
+    return list(np.asarray(col.get_edgecolor()))
+
+
 def _check_unkeyed(fig: Figure, texts: list[Text]) -> list[FigureProblem]:
-    """Colour-coded data with no key: two or more colours, no legend, no colour bar, and no
-    text in those colours naming them (direct labels count as a key)."""
+    """Colour-coded data with no key: two or more colours (lines, scatter points — one
+    colour per point counts —, filled areas, bars and other patches), no legend, no colour
+    bar, and no text in those colours naming them (direct labels count as a key)."""
     if fig.legends or any(_is_colorbar(a) for a in fig.axes):
         return []
     text_hues = {_hue_key(t.get_color()) for t in texts}
@@ -282,10 +429,14 @@ def _check_unkeyed(fig: Figure, texts: list[Text]) -> list[FigureProblem]:
             if ln.get_visible() and len(np.atleast_1d(ln.get_xdata())) >= 1:
                 hues.add(_hue_key(ln.get_color()))
         for col in ax.collections:
-            if col.get_visible() and len(col.get_facecolor()) and col.get_array() is None:
-                fc = col.get_facecolor()[0] if to_rgba(col.get_facecolor()[0])[3] > 0 else \
-                    (col.get_edgecolor()[0] if len(col.get_edgecolor()) else (0, 0, 0, 0))
-                hues.add(_hue_key(fc))
+            if col.get_visible() and col.get_array() is None:
+                hues.update(_hue_key(c) for c in np.unique(np.round(
+                    np.asarray(_collection_colours(col)).reshape(-1, 4), 3), axis=0))
+        for p in ax.patches:
+            if p.get_visible():
+                fc = p.get_facecolor()
+                hues.add(_hue_key(fc if p.get_fill() and to_rgba(fc)[3] > 0
+                                  else p.get_edgecolor()))
         hues.discard(None)
         unkeyed = hues - text_hues
         if len(hues) >= 2 and unkeyed:
@@ -322,6 +473,43 @@ def _inside(pts: np.ndarray, bb: Any, shrink: float = 2.0) -> int:
     return int(m.sum())
 
 
+def _grid(bb: Any, n: int = 9, shrink: float = 2.0) -> np.ndarray:
+    gx = np.linspace(bb.x0 + shrink, bb.x1 - shrink, n)
+    gy = np.linspace(bb.y0 + shrink, bb.y1 - shrink, n)
+    return np.stack(np.meshgrid(gx, gy), axis=-1).reshape(-1, 2)
+
+
+def _path_covered(path: Any, filled: bool, bb: Any, min_share: float = 0.05) -> bool:
+    """A display-space path under the box ``bb``: its filled area covers at least
+    ``min_share`` of the box, or (unfilled) its outline runs through the box."""
+    if not len(path.vertices):
+        return False
+    if filled and path.contains_points(_grid(bb)).mean() >= min_share:
+        return True
+    pts = []
+    for poly in path.to_polygons(closed_only=False):
+        if len(poly) >= 2:
+            seg = np.diff(poly, axis=0)
+            n = np.clip(np.ceil(np.hypot(*seg.T) / 3.0).astype(int), 1, 400)
+            idx = np.repeat(np.arange(len(seg)), n)
+            frac = (np.arange(idx.size) - np.repeat(np.cumsum(n) - n, n)) / np.repeat(n, n)
+            pts.append(poly[idx] + seg[idx] * frac[:, None])
+        pts.append(poly)
+    return bool(pts) and _inside(np.vstack(pts), bb) > 0
+
+
+def _collection_covered(col: Collection, bb: Any) -> bool:
+    fc = np.asarray(col.get_facecolor())
+    filled = bool(len(fc) and (fc[:, 3] > 0).any())
+    tr = col.get_transform()
+    return any(_path_covered(tr.transform_path(p), filled, bb) for p in col.get_paths())
+
+
+def _patch_covered(p: Patch, bb: Any) -> bool:
+    filled = p.get_fill() and to_rgba(p.get_facecolor())[3] > 0
+    return _path_covered(p.get_transform().transform_path(p.get_path()), filled, bb)
+
+
 def _check_legends(fig: Figure, renderer: Any) -> list[FigureProblem]:
     out = []
     legends: list[Legend] = [a.get_legend() for a in fig.axes if a.get_legend() is not None]
@@ -341,10 +529,19 @@ def _check_legends(fig: Figure, renderer: Any) -> list[FigureProblem]:
                 if line.get_visible() and _inside(_line_points(line, ax), bb):
                     hits.append(line.get_label())
             for col in ax.collections:
-                if isinstance(col, PathCollection) and col.get_visible():
+                if not col.get_visible():
+                    continue
+                if isinstance(col, PathCollection):
                     offs = col.get_offset_transform().transform(col.get_offsets())
                     if _inside(np.asarray(offs), bb):
                         hits.append(col.get_label())
+                elif _collection_covered(col, bb):  # fill_between, error bars, vlines
+                    hits.append(col.get_label())
+            in_bars = {id(p) for cont in ax.containers if isinstance(cont, BarContainer)
+                       for p in cont.patches}
+            for p in ax.patches:  # histograms (step), polygons, rectangles not in a bar chart
+                if p.get_visible() and id(p) not in in_bars and _patch_covered(p, bb):
+                    hits.append(p.get_label())
             for cont in ax.containers:
                 if isinstance(cont, BarContainer):
                     for p in cont.patches:
@@ -368,7 +565,13 @@ def _check_legends(fig: Figure, renderer: Any) -> list[FigureProblem]:
     return out
 
 
+#: A tick label in computer notation (``1e−03``, ``2.5e+04``): a reader expects ``10⁻³``.
+_E_NOTATION = re.compile(r"\d[eE][+\-\u2212]?\d")
+
+
 def _check_log_labels(fig: Figure) -> list[FigureProblem]:
+    """Log-axis labels like ``2×10⁰`` or ``1e−03``, and ``1e−03`` on any axis (a tick label
+    or the axis' offset text): decades read as plain numbers or ``10⁻³``."""
     out = []
     for i, ax in enumerate(_data_axes(fig)):
         for nm, axis in (("x", ax.xaxis), ("y", ax.yaxis)):
@@ -376,10 +579,21 @@ def _check_log_labels(fig: Figure) -> list[FigureProblem]:
                 continue
             texts = [t.get_text() for t in axis.get_ticklabels(minor=True)
                      + axis.get_ticklabels(minor=False) if t.get_visible()]
-            bad = [s for s in texts if "times" in s or "×" in s]
+            bad = [s for s in texts if "times" in s or "×" in s or _E_NOTATION.search(s)]
             if bad:
                 out.append(FigureProblem("log-labels", f"panel {i + 1}: {nm} tick labels like "
                                          f"{bad[0]!r}; use eotrack.plotting.log_axis"))
+        for nm, axis in (("x", ax.xaxis), ("y", ax.yaxis)):
+            if axis.get_scale() == "log":
+                continue
+            texts = [t.get_text() for t in axis.get_ticklabels(minor=False) if t.get_visible()]
+            off = axis.get_offset_text()
+            texts += [off.get_text()] if off.get_visible() else []
+            bad = [s for s in texts if _E_NOTATION.search(s)]
+            if bad:
+                out.append(FigureProblem("log-labels", f"panel {i + 1}: {nm} tick labels like "
+                                         f"{bad[0]!r} (computer notation); write 10^k "
+                                         f"(eotrack.plotting.plain_number)"))
     return out
 
 
@@ -424,11 +638,12 @@ def lint_figure(fig: Any, *, rules: tuple[str, ...] = RULES) -> list[FigureProbl
     if unknown:
         raise ValueError(f"unknown rules {sorted(unknown)}; allowed: {RULES}")
     fig = _figure_of(fig)
-    renderer, texts = _draw_recording(fig)
+    renderer, texts, lines = _draw_recording(fig)
     scale = effective_font_scale(fig, renderer)
     problems: list[FigureProblem] = []
     checks = {
-        "overlapping-text": lambda: _check_overlaps(texts, renderer),
+        "overlapping-text": lambda: _check_overlaps(lines),
+        "clipped-text": lambda: _check_clipped(fig, lines, renderer),
         "legend-covers-data": lambda: _check_legends(fig, renderer),
         "axis-label": lambda: _check_labels(fig),
         "small-text": lambda: _check_small(texts, scale),
