@@ -13,7 +13,8 @@ shows ``papers_repro/akf_star/bench_extraction.txt``, written with ``--out``). R
   the isolated, unsaturated stars of the crowded field);
 * time at 512² and 2048² (interleaved repeats; medians and the ratio from the same run);
 * false detections per 10⁶ px of pure Gaussian noise (32 frames of 1024²) at our default
-  threshold, at the former default 3.0 and for SEP at 3σ;
+  threshold, at the former default 3.0 and for SEP at 3σ, and of pure quantised (integer) noise
+  at σ = 0.2–1.5 DN (ours, ours treated as continuous as before issue 28's fix, SEP);
 * cosmic rays on real raw CCD frames copied to data/ccd/ from packages (ccdproc's SAAO 1.0 m frame,
   astroscrappy's GMOS cutout; see data/README.md): detections on astroscrappy's cosmic-ray
   mask, how many the default drops (sharpness/roundness flags), and SEP's count for reference.
@@ -185,6 +186,29 @@ def bench_noise(n_frames: int = 32) -> None:
           f"former default 3.0 {n_old / mpx:.1f}, SEP 3σ {n_sep / mpx:.3f}")
 
 
+def bench_quantised(n_frames: int = 4) -> None:
+    """False detections on pure QUANTISED noise: integer-valued frames (round(offset + σ z),
+    offsets on and between steps, uint16) at low read noise, where the mesh σ collapsed before
+    issue 28's fix; ``quantum=0`` reproduces the old (continuous) treatment."""
+    from eotrack.imaging import BackgroundConfig
+
+    rng = np.random.default_rng(12)
+    old_cfg = SkyConfig(background=BackgroundConfig(quantum=0))
+    for sigma in (0.2, 0.3, 0.5, 0.8, 1.5):
+        n_def = n_old = n_sep = 0
+        for i in range(n_frames):
+            k = np.round(100.0 + i / n_frames + sigma * rng.standard_normal((1024, 1024)))
+            im = k.astype(np.uint16)
+            n_def += len(extract_stars(im).xy)
+            n_old += len(extract_stars(im, config=old_cfg).xy)
+            n_sep += len(sep_detect(im.astype(np.float64), 3.0))
+        mpx = n_frames * 1024 * 1024 / 1e6
+        print(f"[quantised noise σ = {sigma} DN, integer, offsets 0-{(n_frames - 1) / n_frames:g} "
+              f"step, {mpx:.1f} Mpx] false detections per 10⁶ px: ours default "
+              f"{n_def / mpx:.3f} (target <= 1), treated as continuous (before the fix) "
+              f"{n_old / mpx:.1f}, SEP 3σ {n_sep / mpx:.1f}")
+
+
 def bench_cosmic() -> None:
     from eotrack.imaging import real_ccd_frames
 
@@ -259,5 +283,5 @@ def run_recorded(benches, name: str, argv: list[str] | None = None) -> None:
 
 
 if __name__ == "__main__":
-    run_recorded((bench_noise, bench_cosmic, bench_crowded, bench_real, bench_centroids,
+    run_recorded((bench_noise, bench_quantised, bench_cosmic, bench_crowded, bench_real, bench_centroids,
                   bench_time), "bench_extraction.py")
