@@ -16,7 +16,7 @@ from .claims import Claim, load_claims
 from .scorecard import ClaimResult, scorecard, status_summary
 from .stability import Stability, read_stability
 
-__all__ = ["Reproduction", "central_line", "write_report"]
+__all__ = ["Reproduction", "central_line", "write_lint_sidecar", "write_report"]
 
 
 @dataclass
@@ -128,6 +128,28 @@ def _history_lines(claims: dict[str, Claim]) -> list[str]:
     return out
 
 
+def write_lint_sidecar(fig: Any, png: str | os.PathLike[str]) -> Path:
+    """Beside a saved figure ``<name>.png`` write ``<name>.lint.json``: the figure lint's
+    verdict on that very Figure object and the SHA-256 of the PNG written, so the lint test
+    checks the committed PNG without drawing it again (issue 23).
+
+    Returns
+    -------
+    pathlib.Path
+        The sidecar's path.
+    """
+    import hashlib
+
+    from eotrack.plotting import figure_lint_record
+
+    png = Path(png)
+    rec = {"png": png.name, "sha256": hashlib.sha256(png.read_bytes()).hexdigest(),
+           **figure_lint_record(fig)}
+    side = png.with_suffix(".lint.json")
+    side.write_text(json.dumps(rec, indent=1, ensure_ascii=False) + "\n", encoding="utf-8")
+    return side
+
+
 def write_report(rep: Reproduction, out_dir: str | os.PathLike[str], *, dpi: int = 110,
                  claims: dict[str, Claim] | None = None) -> Path:
     """Write ``REPORT.md``, ``scorecard.json`` and ``figures/*.png`` into ``out_dir``.
@@ -144,7 +166,7 @@ def write_report(rep: Reproduction, out_dir: str | os.PathLike[str], *, dpi: int
     out = Path(out_dir)
     fig_dir = out / "figures"
     fig_dir.mkdir(parents=True, exist_ok=True)
-    for old in fig_dir.glob("*.png"):
+    for old in [*fig_dir.glob("*.png"), *fig_dir.glob("*.lint.json")]:
         old.unlink()
     stability = read_stability(out)
     if claims is None:
@@ -182,6 +204,7 @@ def write_report(rep: Reproduction, out_dir: str | os.PathLike[str], *, dpi: int
         lines += ["## Figures", ""]
         for stem, fig in rep.figures.items():
             fig.savefig(fig_dir / f"{stem}.png", dpi=dpi, bbox_inches="tight")
+            write_lint_sidecar(fig, fig_dir / f"{stem}.png")
             alt = describe_figure(fig).replace("[", "(").replace("]", ")")
             lines += [f"![{alt}](figures/{stem}.png)", "", f"*{stem}*", ""]
     report = out / "REPORT.md"

@@ -77,15 +77,26 @@ def plot_epipolar_geometry(scenario: Scenario, pair=(0, 3), target: int = 4, *, 
     # within a few thousand km of each other: their labels would overlap); the others are
     # named in the legend
     others = [k for k in range(len(scenario.cameras)) if k not in (a, b)]
+    from mpl_toolkits.mplot3d import proj3d
+
+    pts = np.vstack([scenario.objects_km, scenario.sat_km, np.zeros((1, 3))])
+    mid = 0.5 * (pts.max(0) + pts.min(0))
+    half = 0.5 * (pts.max(0) - pts.min(0)).max()
+    ax.set_xlim(mid[0] - half, mid[0] + half)
+    ax.set_ylim(mid[1] - half, mid[1] + half)
+    ax.set_zlim(mid[2] - half, mid[2] + half)
+    sx = {k: proj3d.proj_transform(*scenario.cameras[k].c, ax.get_proj())[0] for k in (a, b)}
     for k, cam in enumerate(scenario.cameras):
         hi = k in (a, b)
         ax.scatter(*cam.c, color="tab:blue" if hi else "0.5", s=30 if hi else 12,
                    label=("other sensors (" + ", ".join(f"O{m + 1}" for m in others) + ")")
                    if k == others[0] else None)
-        if hi:
-            left = k == a
+        if hi:  # the label of the sensor left on screen to its left (below), the other's
+            # to its right (above): placed from the projection, so they never meet
+            left = k == (a if sx[a] <= sx[b] else b)
             ax.text(*cam.c, f"O{k + 1}  " if left else f"  O{k + 1}", fontsize=9,
-                    color="tab:blue", ha="right" if left else "left", va="bottom")
+                    color="tab:blue", ha="right" if left else "left",
+                    va="top" if left else "bottom")
         if hi:
             ax.quiver(*cam.c, *(cam.R[2] * 0.6 * np.linalg.norm(X - cam.c)), color="tab:blue",
                       lw=1, arrow_length_ratio=0.05)
@@ -101,12 +112,6 @@ def plot_epipolar_geometry(scenario: Scenario, pair=(0, 3), target: int = 4, *, 
 
     ax.add_collection3d(Poly3DCollection([np.stack([ca.c, cb.c, X])], alpha=0.25,
                                          facecolor="tab:purple", edgecolor="tab:purple"))
-    pts = np.vstack([scenario.objects_km, scenario.sat_km, np.zeros((1, 3))])
-    mid = 0.5 * (pts.max(0) + pts.min(0))
-    half = 0.5 * (pts.max(0) - pts.min(0)).max()
-    ax.set_xlim(mid[0] - half, mid[0] + half)
-    ax.set_ylim(mid[1] - half, mid[1] + half)
-    ax.set_zlim(mid[2] - half, mid[2] + half)
     for axis in (ax.xaxis, ax.yaxis, ax.zaxis):
         axis.set_major_locator(MaxNLocator(3))
     ax.set_xlabel("X (km)")
@@ -201,12 +206,13 @@ def plot_frame_chain(scenario: Scenario, k: int = 0, *, fig=None):
     fig = fig if fig is not None else plt.figure(figsize=(7.5, 3.0))
     y, p, r = np.degrees(ch.yaw_pitch_roll_rad)
     panels = [("J2000", np.eye(3), "reference (ECI)"),
-              ("orbit (LVLH)", ch.orbit, "from r, v: z nadir, y −h"),
-              ("body", ch.body, f"r(Y, P, R) of eq. (4)\nY {y:.1f}°, P {p:.1f}°, R {r:.1f}°"),
-              ("sensor", ch.sensor, "mounting M (assumed)\nz = boresight")]
+              ("orbit (LVLH)", ch.orbit, "from r, v:\nz nadir, y −h"),
+              ("body", ch.body, f"r(Y, P, R), eq. (4):\nY {y:.1f}°, P {p:.1f}°,\n"
+               f"R {r:.1f}°".replace("-", "−")),
+              ("sensor", ch.sensor, "mounting M\n(assumed),\nz = boresight")]
     rhat = ch.position_km / np.linalg.norm(ch.position_km)
     gs = fig.add_gridspec(1, 7, width_ratios=(1, 0.22, 1, 0.22, 1, 0.22, 1), wspace=0.0)
-    steps = ("R_orbit", "r(Y,P,R)", "M")
+    steps = (r"$R_\mathrm{orbit}$", r"$r(Y,P,R)$", r"$M$")
     for i, (name, R, sub) in enumerate(panels):
         ax = fig.add_subplot(gs[0, 2 * i], projection="3d")
         for e in np.eye(3):
@@ -227,11 +233,13 @@ def plot_frame_chain(scenario: Scenario, k: int = 0, *, fig=None):
         if i < 3:
             axa = fig.add_subplot(gs[0, 2 * i + 1])
             axa.axis("off")
+            axa.set_zorder(5)  # its label is drawn over the neighbouring 3-D panels' panes
             axa.annotate("", xy=(0.95, 0.5), xytext=(0.05, 0.5),
                          arrowprops={"arrowstyle": "->", "lw": 2})
             axa.set_title(steps[i], fontsize=9, y=0.55)
-    fig.suptitle(f"Frames of sensor {k + 1}: R_sensor = M · r(Y, P, R) · R_orbit "
-                 "(grey: J2000 axes)", fontsize=10, y=1.02)
+    fig.suptitle(f"Frames of sensor {k + 1}: "
+                 r"$R_\mathrm{sensor} = M\,r(Y, P, R)\,R_\mathrm{orbit}$ (grey: J2000 axes)",
+                 fontsize=10, y=1.02)
     return fig
 
 
@@ -371,6 +379,14 @@ def plot_fig3(scenario: Scenario, obs: Observation, images: list[np.ndarray], *,
         ax.grid(False)
     fig.suptitle("Fig. 3 — star maps with GEO objects (circled) and false targets (boxed)")
     fig.tight_layout()
+    from matplotlib.lines import Line2D
+
+    key = [Line2D([], [], ls="none", marker="o", ms=9, mfc="none", mec="tab:orange", mew=1.2,
+                  label="GEO object (named)"),
+           Line2D([], [], ls="none", marker="s", ms=9, mfc="none", mec="tab:red", mew=1.2,
+                  label="false target")]
+    fig.legend(handles=key, loc="upper center", bbox_to_anchor=(0.5, 0.0), ncol=2,
+               frameon=False)
     return fig
 
 

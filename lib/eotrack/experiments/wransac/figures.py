@@ -297,8 +297,12 @@ def plot_budget(errors: np.ndarray, budgets: tuple[int, ...], methods: tuple[str
         ax.boxplot(data, whis=(5, 95), showfliers=True, flierprops={"ms": 3})
         ax.set_xticks(range(1, len(show) + 1),
                       [f"{METHOD_LABELS.get(m, m)}\n{np.mean(d <= bound):.0%} ≤ {bound:g}″"
-                       for m, d in zip(show, data, strict=True)], fontsize=7, rotation=20)
+                       for m, d in zip(show, data, strict=True)], fontsize=8.5, rotation=20,
+                      ha="right", rotation_mode="anchor")
     ax.axhline(bound, ls="--", c="k", lw=0.8)
+    ax.annotate(f"bound {bound:g}″", (1.0, bound), xycoords=("axes fraction", "data"),
+                xytext=(-3, 3), textcoords="offset points", ha="right", va="bottom",
+                fontsize=9)
     ax.set_yscale("log")
     # plain decade labels, no minor ticks, a fixed title place: the Explore panel redraws
     # this figure on every change, and mathtext labels, minor ticks and the automatic title
