@@ -24,7 +24,8 @@ def _number(nn: str | int) -> str:
 
 
 def lesson_navigation(nn: str | int, notebooks: str | os.PathLike[str] | None = None) -> str:
-    """Markdown ``← previous · index · next →`` for notebook ``nn``.
+    """Markdown ``← previous · index · next → · API reference`` for notebook ``nn`` (the last
+    link when the book's API reference ``notebooks/_book/api/index.md`` exists).
 
     Parameters
     ----------
@@ -59,7 +60,16 @@ def lesson_navigation(nn: str | int, notebooks: str | os.PathLike[str] | None = 
         parts.append(f"[index]({index[0]['path']})")
     if k + 1 < len(rows):
         parts.append(link(rows[k + 1]) + " →")
+    from eotrack.repro.collection import _notebooks_dir
+
+    if (_notebooks_dir(notebooks) / API_INDEX).is_file():
+        parts.append(f"[API reference]({API_INDEX})")
     return " · ".join(parts)
+
+
+#: The book's API reference, relative to the notebooks folder (linked from every lesson's
+#: navigation line when it exists).
+API_INDEX = "_book/api/index.md"
 
 
 def _slug_of(num: str, notebooks: str | os.PathLike[str] | None) -> str | None:
