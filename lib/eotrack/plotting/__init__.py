@@ -31,11 +31,15 @@ Using it
 
 The lint
 --------
-:func:`lint_figure` draws a figure and returns its problems: overlapping text (from the
-rendered bounding boxes, rotated labels as rotated boxes), a legend covering data, an axis
+:func:`lint_figure` draws a figure and returns its problems: overlapping text (each line of
+every text drawn — multi-line labels and outlined text included — as the renderer lays it out,
+rotated labels as rotated boxes), text cut off by its axes or the figure's edge, a legend
+covering data (lines, markers, bars, filled bands, error bars, patches, images), an axis
 without a label, text under 8 pt at the book's width, a figure or panel without a title, two
-series with the same colour and style, colour-coded data without any key, log-axis labels
-like ``2×10⁰``, a figure so wide that the book shows it below 80 % of its size. ``tests/figures/`` runs
+series with the same colour and style or with the same style in colours a deuteranope cannot
+tell apart (red vs green), colour-coded data without any key (lines, per-point scatter colours,
+bands, bars), tick labels like ``2×10⁰`` or ``1e−03``, a figure so wide that the book shows it
+below 80 % of its size. ``tests/figures/`` runs
 it on every public figure function of the library.
 """
 
