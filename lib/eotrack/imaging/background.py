@@ -73,7 +73,7 @@ def quantisation_step(image: Any) -> float:
     Integer ADU (Δ = 1), integers times a gain plus an offset stored as floats (Δ = gain) and
     8-bit frames are quantised; data with continuous values (or a lattice finer than ten times
     the float32 resolution of the values, which no noise level resolves) give 0.0. Checked on up
-    to ~65,000 pixels (every k-th row and column): all differences between the distinct values
+    to ~16,000 pixels (every k-th row and column): all differences between the distinct values
     must be integer multiples of the smallest one, to 1 % of it plus the float32 rounding.
 
     Raises
@@ -82,7 +82,7 @@ def quantisation_step(image: Any) -> float:
         If the image is not a finite 2-D numeric array of at least 3×3 pixels.
     """
     img = _as_image(image)
-    step = max(1, int(np.sqrt(img.size / 65536)))
+    step = max(1, int(np.sqrt(img.size / 16384)))
     u = np.unique(img[::step, ::step].astype(np.float64))
     if len(u) < 2:
         return 0.0

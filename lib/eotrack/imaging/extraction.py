@@ -500,7 +500,7 @@ def _quantised_noise(img: np.ndarray, bg: Any, cfg: BackgroundConfig, thresh: fl
     from scipy.stats import norm
 
     delta = float(bg.quantum)
-    if delta <= 0 or float(np.median(bg.rms)) > _QUANTISED_MAX_RATIO * delta:
+    if delta <= 0 or float(bg.global_rms) > _QUANTISED_MAX_RATIO * delta:
         return None
     H, W = img.shape
     m = min(cfg.mesh, H, W)
