@@ -13,7 +13,6 @@ from __future__ import annotations
 
 import hashlib
 import json
-import re
 from pathlib import Path
 
 import pytest
@@ -129,13 +128,31 @@ def test_every_figure_function_is_linted(slug, request):
 
 
 def report_calls(slug: str, funcs: dict) -> set[str]:
-    """Figure functions the experiment's report code calls (``name(`` in a module of
-    ``eotrack.experiments.<slug>`` other than ``figures.py``): with the report's figures
-    checked from their sidecars, these are the functions a REPORT figure draws."""
+    """Figure functions the experiment's report code calls: named as ``name(`` in a module of
+    ``eotrack.experiments.<slug>`` other than ``figures.py``, or called inside ``figures.py``
+    by a function so reached (a composite figure's panels). With the report's figures checked
+    from their sidecars, these are the functions a REPORT figure draws."""
+    import ast
+
     pkg = ROOT / "lib" / "eotrack" / "experiments" / slug
     src = "\n".join(p.read_text(encoding="utf-8") for p in sorted(pkg.rglob("*.py"))
                     if p.name != "figures.py")
-    return {n for n in funcs if re.search(rf"\b{re.escape(n)}\(", src)}
+    called = {n.id if isinstance(n, ast.Name) else n.attr
+              for n in ast.walk(ast.parse(src)) if isinstance(n, ast.Call)
+              for n in [n.func] if isinstance(n, ast.Name | ast.Attribute)}
+    inner: dict[str, set[str]] = {}
+    for node in ast.parse((pkg / "figures.py").read_text(encoding="utf-8")).body:
+        if isinstance(node, ast.FunctionDef):
+            inner[node.name] = {c.func.id for c in ast.walk(node)
+                                if isinstance(c, ast.Call) and isinstance(c.func, ast.Name)}
+    reached = {n for n in inner if n in called}
+    todo = list(reached)
+    while todo:
+        for n in inner.get(todo.pop(), ()):
+            if n not in reached:
+                reached.add(n)
+                todo.append(n)
+    return {n for n in funcs if n in reached}
 
 
 def test_sidecar_is_the_saved_figures_verdict(tmp_path):
