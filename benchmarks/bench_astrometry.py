@@ -34,49 +34,19 @@ from astropy.coordinates import SkyCoord
 from astropy.wcs.utils import fit_wcs_from_points
 from eotrack.astro.astrometry import (
     PlateSolveError,
-    catalog_in_field,
     solve_plate,
-    wcs_from_camera,
+    synthetic_plate_scene,
 )
-from eotrack.geometry import project_directions
 
 ARCSEC = 206264.80624709636
 
 
-def _rot(axis: int, a: float) -> np.ndarray:
-    c, s = np.cos(a), np.sin(a)
-    i, j = [k for k in range(3) if k != axis]
-    m = np.eye(3)
-    m[i, i], m[i, j], m[j, i], m[j, j] = c, -s, s, c
-    return m
-
-
-def _look(ra: float, dec: float) -> np.ndarray:
-    a, d = np.radians(ra), np.radians(dec)
-    z = np.array([np.cos(d) * np.cos(a), np.cos(d) * np.sin(a), np.sin(d)])
-    x = np.array([-np.sin(a), np.cos(a), 0.0])
-    return np.stack([x, np.cross(z, x), z])
-
-
 def scene(rng, ra, dec, *, scale=15.0, n=256, err=120.0, roll=0.3, noise=0.1, n_false=15,
           drop=0.1):
-    """Detections (+ the index of each true star's detection), catalogue, believed/true WCS."""
-    f = ARCSEC / scale
-    K = np.array([[f, 0, (n - 1) / 2], [0, f, (n - 1) / 2], [0, 0, 1.0]])
-    R = _look(ra, dec)
-    phi = rng.uniform(0, 2 * np.pi)
-    e = err / ARCSEC
-    Rb = _rot(2, np.radians(roll)) @ _rot(0, e * np.sin(phi)) @ _rot(1, e * np.cos(phi)) @ R
-    wt = wcs_from_camera(K, R, (n, n))
-    stars = catalog_in_field(wt, (n, n), max_mag=10.0)
-    xy = project_directions(stars.unit_vectors(), K, R) + rng.normal(0, noise, (len(stars), 2))
-    seen = rng.random(len(xy)) > drop
-    det = np.vstack([xy[seen], rng.uniform(0, n - 1, (n_false, 2))])
-    wg = wcs_from_camera(K, Rb, (n, n))
-    cat = catalog_in_field(wg, (n, n), max_mag=10.0, margin_px=err / scale * 1.5 + 5)
-    return dict(det=det, true_xy=xy[seen], true_radec=np.c_[stars.ra_deg, stars.dec_deg][seen],
-                cat=np.c_[cat.ra_deg, cat.dec_deg], wg=wg, wt=wt, n_in=len(stars), n=n,
-                scale=scale)
+    """Detections, catalogue, believed/true WCS (:func:`synthetic_plate_scene`)."""
+    return synthetic_plate_scene(rng, ra, dec, scale=scale, n=n, err_arcsec=err, roll_deg=roll,
+                                 noise_px=noise, n_false=n_false, drop=drop)
+
 
 
 def wcs_err(w_fit, w_true, n, rng) -> float:

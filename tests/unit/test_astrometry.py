@@ -9,10 +9,13 @@ from eotrack.astro import load_catalog
 from eotrack.astro.astrometry import (
     PlateSolveError,
     _separation_arcsec,
+    axis_rotation,
     camera_from_wcs,
     catalog_in_field,
+    look_at_radec,
     pixel_scale_arcsec,
     solve_plate,
+    synthetic_plate_scene,
     wcs_from_camera,
 )
 from eotrack.geometry import project_directions
@@ -22,39 +25,11 @@ from hypothesis import strategies as st
 ARCSEC = 206264.80624709636
 
 
-def _rot(axis: int, a: float) -> np.ndarray:
-    c, s = np.cos(a), np.sin(a)
-    i, j = [k for k in range(3) if k != axis]
-    m = np.eye(3)
-    m[i, i], m[i, j], m[j, i], m[j, j] = c, -s, s, c
-    return m
-
-
-def _look(ra: float, dec: float) -> np.ndarray:
-    a, d = np.radians(ra), np.radians(dec)
-    z = np.array([np.cos(d) * np.cos(a), np.cos(d) * np.sin(a), np.sin(d)])
-    x = np.array([-np.sin(a), np.cos(a), 0.0])
-    return np.stack([x, np.cross(z, x), z])
-
-
-def scene(rng, ra, dec, *, scale=15.0, n=256, err_arcsec=120.0, roll_deg=0.3, noise_px=0.1,
-          n_false=10, drop=0.1, max_mag=10.0, mirror=False):
-    """Detections of a real star field (true camera) + the believed WCS (truth turned)."""
-    f = ARCSEC / scale
-    K = np.array([[f, 0, (n - 1) / 2], [0, -f if mirror else f, (n - 1) / 2], [0, 0, 1.0]])
-    R = _look(ra, dec)
-    phi = rng.uniform(0, 2 * np.pi)
-    e = err_arcsec / ARCSEC
-    Rb = _rot(2, np.radians(roll_deg)) @ _rot(0, e * np.sin(phi)) @ _rot(1, e * np.cos(phi)) @ R
-    w_true = wcs_from_camera(K, R, (n, n))
-    stars = catalog_in_field(w_true, (n, n), max_mag=max_mag)
-    xy = project_directions(stars.unit_vectors(), K, R) + rng.normal(0, noise_px, (len(stars), 2))
-    xy = xy[rng.random(len(xy)) > drop]
-    xy = np.vstack([xy, rng.uniform(0, n - 1, (n_false, 2))])
-    w_guess = wcs_from_camera(K, Rb, (n, n))
-    margin = err_arcsec / scale * 1.5 + 5
-    cat = catalog_in_field(w_guess, (n, n), max_mag=max_mag, margin_px=margin)
-    return xy, np.column_stack([cat.ra_deg, cat.dec_deg]), w_guess, w_true, len(stars)
+def scene(rng, ra, dec, **kw):
+    """Detections of a real star field, catalogue, believed and true WCS, stars in the field
+    (the library's :func:`synthetic_plate_scene`)."""
+    s = synthetic_plate_scene(rng, ra, dec, **kw)
+    return s["det"], s["cat"], s["wg"], s["wt"], s["n_in"]
 
 
 def expected_error_arcsec(noise_px: float, scale: float, n_matched: int) -> float:
@@ -78,7 +53,7 @@ def test_wcs_from_camera_is_the_pinhole_projection():
     rng = np.random.default_rng(0)
     for K in (np.array([[13751.0, 0, 127.5], [0, 13751.0, 127.5], [0, 0, 1]]),
               np.array([[5000.0, 3.0, 100.0], [0, -5100.0, 140.0], [0, 0, 1]])):
-        R = _rot(2, 0.4) @ _look(200.0, 35.0)
+        R = axis_rotation(2, 0.4) @ look_at_radec(200.0, 35.0)
         w = wcs_from_camera(K, R, (256, 256))
         d = R.T @ np.vstack([rng.uniform(-0.01, 0.01, (2, 50)), np.ones((1, 50))])
         d = (d / np.linalg.norm(d, axis=0)).T
@@ -280,14 +255,14 @@ def test_bad_inputs_name_the_argument():
 
 def test_catalog_in_field_selects_the_frame():
     w = wcs_from_camera(np.array([[ARCSEC / 15, 0, 127.5], [0, ARCSEC / 15, 127.5], [0, 0, 1.0]]),
-                        _look(*FIELD), (256, 256))
+                        look_at_radec(*FIELD), (256, 256))
     cat = catalog_in_field(w, max_mag=10.0)
     x, y = w.wcs_world2pix(cat.ra_deg, cat.dec_deg, 0)
     assert len(cat) > 10 and np.all((x > -1) & (x < 256) & (y > -1) & (y < 256))
     assert np.all(np.diff(cat.mag) >= 0) and cat.mag.max() <= 10.0
     full = load_catalog()
     full = full.select(full.mag <= 10.0)
-    v = full.unit_vectors() @ _look(*FIELD)[2]
+    v = full.unit_vectors() @ look_at_radec(*FIELD)[2]
     x2, y2 = w.wcs_world2pix(full.ra_deg[v > 0.99], full.dec_deg[v > 0.99], 0)
     ins = (x2 >= -0.5) & (x2 <= 255.5) & (y2 >= -0.5) & (y2 <= 255.5)
     assert ins.sum() == len(cat)
@@ -314,7 +289,7 @@ def test_property_any_pointing_error_within_the_search_is_recovered(err, roll, s
        f=st.floats(500.0, 50000.0), skew=st.floats(-5.0, 5.0), mirror=st.booleans())
 def test_property_camera_and_wcs_round_trip(ra, dec, roll, f, skew, mirror):
     K = np.array([[f, skew, 120.0], [0, -f if mirror else f * 1.01, 90.0], [0, 0, 1.0]])
-    R = _rot(2, roll) @ _look(ra, dec)
+    R = axis_rotation(2, roll) @ look_at_radec(ra, dec)
     w = wcs_from_camera(K, R, (200, 250))
     K2, R2 = camera_from_wcs(w)
     np.testing.assert_allclose(K2, K, rtol=1e-8, atol=1e-6 * f)

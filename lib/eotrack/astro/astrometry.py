@@ -45,6 +45,7 @@ from eotrack.validation import (
     as_finite_array,
     as_points,
     check_choice,
+    check_generator,
     check_int,
     check_positive,
 )
@@ -54,10 +55,14 @@ from .catalog import StarCatalog, load_catalog
 __all__ = [
     "PlateSolution",
     "PlateSolveError",
+    "axis_rotation",
     "camera_from_wcs",
     "catalog_in_field",
+    "look_at_radec",
+    "mount_error_rotation",
     "pixel_scale_arcsec",
     "solve_plate",
+    "synthetic_plate_scene",
     "wcs_from_camera",
 ]
 
@@ -821,3 +826,70 @@ def _poisson_quantile(lam: float, p_tail: float) -> int:
     k = np.arange(int(lam + 20.0 * np.sqrt(lam) + 60.0))
     sf = np.r_[1.0, pdtrc(k[:-1], max(lam, 1e-12))]   # P(X ≥ k)
     return int(np.argmax(sf <= p_tail))
+
+
+# ------------------------------------------------------------------ synthetic fields (tests, benchmarks)
+def axis_rotation(axis: int, angle_rad: float) -> np.ndarray:
+    """Rotation matrix by ``angle_rad`` about coordinate axis ``axis`` (0, 1, 2)."""
+    check_int(axis, "axis", min_value=0, max_value=2)
+    c, s = np.cos(float(angle_rad)), np.sin(float(angle_rad))
+    i, j = [k for k in range(3) if k != axis]
+    m = np.eye(3)
+    m[i, i], m[i, j], m[j, i], m[j, j] = c, -s, s, c
+    return m
+
+
+def look_at_radec(ra_deg: float, dec_deg: float) -> np.ndarray:
+    """World → camera rotation: z at (ra, dec), x towards the east, y towards the north."""
+    if not -90 < float(dec_deg) < 90:
+        raise ValueError(f"dec_deg must lie in (-90, 90), got {dec_deg}")
+    a, d = np.radians(float(ra_deg)), np.radians(float(dec_deg))
+    z = np.array([np.cos(d) * np.cos(a), np.cos(d) * np.sin(a), np.sin(d)])
+    x = np.array([-np.sin(a), np.cos(a), 0.0])
+    return np.stack([x, np.cross(z, x), z])
+
+
+def mount_error_rotation(rng: np.random.Generator, error_arcsec: float, roll_deg: float
+                         ) -> np.ndarray:
+    """A mount's attitude error ``E`` (believed = ``E @ true``): the boresight off by
+    ``error_arcsec`` in a random direction, the roll off by ``roll_deg`` (as given; draw the
+    sign yourself if it should be random)."""
+    g = check_generator(rng)
+    e = check_positive(error_arcsec, "error_arcsec", allow_zero=True) / _RAD_TO_ARCSEC
+    phi = g.uniform(0, 2 * np.pi)
+    return axis_rotation(2, np.radians(float(roll_deg))) @ axis_rotation(
+        0, e * np.sin(phi)) @ axis_rotation(1, e * np.cos(phi))
+
+
+def synthetic_plate_scene(rng: np.random.Generator, ra_deg: float, dec_deg: float, *,
+                          scale: float = 15.0, n: int = 256, err_arcsec: float = 120.0,
+                          roll_deg: float = 0.3, noise_px: float = 0.1, n_false: int = 10,
+                          drop: float = 0.1, max_mag: float = 10.0, mirror: bool = False,
+                          catalog=None) -> dict:
+    """Detections of a real star field (the packaged Gaia extract) seen by a true camera, and
+    the believed WCS (truth turned by a mount error) — the input of :func:`solve_plate`.
+
+    Returns a dict: ``det`` (detections: the seen stars with Gaussian centroid noise
+    ``noise_px``, a fraction ``drop`` left out, then ``n_false`` uniform false ones),
+    ``true_xy``/``true_radec`` (the seen stars' true pixels and RA/Dec), ``cat`` (catalogue
+    RA/Dec around the believed field), ``wg``/``wt`` (believed and true WCS), ``n_in`` (stars
+    in the true field), ``n``, ``scale``.
+    """
+    g = check_generator(rng)
+    f = _RAD_TO_ARCSEC / check_positive(scale, "scale")
+    K = np.array([[f, 0, (n - 1) / 2], [0, -f if mirror else f, (n - 1) / 2], [0, 0, 1.0]])
+    R = look_at_radec(ra_deg, dec_deg)
+    Rb = mount_error_rotation(g, err_arcsec, roll_deg) @ R
+    wt = wcs_from_camera(K, R, (n, n))
+    stars = catalog_in_field(wt, (n, n), max_mag=max_mag, catalog=catalog)
+    from eotrack.geometry import project_directions
+
+    xy = project_directions(stars.unit_vectors(), K, R) + g.normal(0, noise_px, (len(stars), 2))
+    seen = g.random(len(xy)) > drop
+    det = np.vstack([xy[seen], g.uniform(0, n - 1, (n_false, 2))])
+    wg = wcs_from_camera(K, Rb, (n, n))
+    cat = catalog_in_field(wg, (n, n), max_mag=max_mag, margin_px=err_arcsec / scale * 1.5 + 5,
+                           catalog=catalog)
+    return dict(det=det, true_xy=xy[seen], true_radec=np.c_[stars.ra_deg, stars.dec_deg][seen],
+                cat=np.c_[cat.ra_deg, cat.dec_deg], wg=wg, wt=wt, n_in=len(stars), n=n,
+                scale=scale)

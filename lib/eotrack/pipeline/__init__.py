@@ -24,10 +24,12 @@ from .measure import (
     FrameSkippedWarning,
     PipelineConfig,
     default_initiator,
+    extract_frame,
     initiate_tracks,
     measure_frame,
     measure_frames,
     separate_targets,
+    star_trail_px,
 )
 from .simulate import SimulatedSequence, simulate_sequence
 
@@ -42,11 +44,13 @@ __all__ = [
     "PlateSolveError",
     "SimulatedSequence",
     "default_initiator",
+    "extract_frame",
     "initiate_tracks",
     "measure_frame",
     "measure_frames",
     "read_fits",
     "separate_targets",
     "simulate_sequence",
+    "star_trail_px",
     "write_fits",
 ]

@@ -35,8 +35,9 @@ from eotrack.astro.astrometry import (
 )
 from eotrack.astro.catalog import StarCatalog
 from eotrack.imaging import SkyConfig, extract_stars
+from eotrack.imaging.trails import extract_trailed
 from eotrack.tracking.initiation import ModifiedHoughInitiator
-from eotrack.validation import as_points, check_int, check_positive
+from eotrack.validation import as_points, check_choice, check_int, check_positive
 
 from .frames import FitsFrameError, Frame, read_fits
 
@@ -46,11 +47,16 @@ __all__ = [
     "FrameSkippedWarning",
     "PipelineConfig",
     "default_initiator",
+    "extract_frame",
     "initiate_tracks",
     "measure_frame",
     "measure_frames",
     "separate_targets",
+    "star_trail_px",
 ]
+
+#: Earth's rotation rate (rad/s): a staring (Earth-fixed) mount sees the stars drift at it
+_EARTH_RATE_RAD_S = 7.292115e-5
 
 #: Columns of :func:`measure_frames`' table, with their units.
 MEASUREMENT_COLUMNS = (("time", None), ("ra", u.deg), ("dec", u.deg),
@@ -95,6 +101,16 @@ class PipelineConfig:
     max_gap_s
         Frames of a station without a ``sequence`` label are split into sequences where the
         time between two frames exceeds this (s).
+    mount
+        ``"staring"`` (fixed to the Earth, the GEO survey mode: stars trail at the sidereal
+        rate over the exposure, :func:`star_trail_px`) or ``"sidereal"`` (stars are points).
+    trail_min_px
+        Star trails at least this long (px) are extracted trail-aware
+        (:func:`eotrack.imaging.trails.extract_trailed`: matched filters for points and trails,
+        trail centroids at the trail's midpoint = mid-exposure); shorter ones with the point
+        extractor (``sky``). 3 px: a 2-px trail (2 s at 15″/px) is still round enough for the
+        point extractor's shape test, a 6-px one (2 s at 5″/px) is rejected by it as
+        elongated.
     """
 
     sky: SkyConfig = field(default_factory=lambda: SkyConfig(thresh=4.0))
@@ -111,6 +127,8 @@ class PipelineConfig:
     centroid_floor_px: float = 0.03
     initiator_sigma_px: float = 0.3
     max_gap_s: float = 300.0
+    mount: str = "staring"
+    trail_min_px: float = 3.0
 
     def __post_init__(self) -> None:
         if not isinstance(self.sky, SkyConfig):
@@ -129,6 +147,8 @@ class PipelineConfig:
         check_positive(self.centroid_floor_px, "centroid_floor_px")
         check_positive(self.initiator_sigma_px, "initiator_sigma_px")
         check_positive(self.max_gap_s, "max_gap_s")
+        check_choice(self.mount, "mount", ("staring", "sidereal"))
+        check_positive(self.trail_min_px, "trail_min_px")
 
 
 @dataclass(frozen=True)
@@ -202,6 +222,66 @@ def _bright(catalog: StarCatalog | None, max_mag: float) -> StarCatalog:
     return sel
 
 
+def star_trail_px(frame: Frame, mount: str = "staring") -> np.ndarray:
+    """A star's displacement ``(dx, dy)`` (px) over ``frame``'s exposure, at the frame's centre,
+    from its believed WCS: for a ``"staring"`` (Earth-fixed) mount the sidereal drift
+    ``ω⊕ × exposure`` along the RA axis (≈ 15″/s × cos δ), for a ``"sidereal"`` one zero."""
+    if not isinstance(frame, Frame):
+        raise TypeError(f"frame must be a Frame, got {type(frame).__name__}")
+    if check_choice(mount, "mount", ("staring", "sidereal")) == "sidereal":
+        return np.zeros(2)
+    ny, nx = frame.shape
+    w = frame.wcs_guess
+    ra, dec = w.wcs_pix2world([[(nx - 1) / 2.0, (ny - 1) / 2.0]], 0)[0]
+    half = np.degrees(_EARTH_RATE_RAD_S * frame.exposure_s / 2.0)
+    p = w.wcs_world2pix([[ra - half, dec], [ra + half, dec]], 0)
+    return np.asarray(p[1] - p[0], float)
+
+
+def extract_frame(frame: Frame, config: PipelineConfig | None = None
+                  ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Detections ``(xy (n, 2), flux, snr)`` of one frame, brightest first.
+
+    The point extractor (:func:`eotrack.imaging.extract_stars`, ``config.sky``) finds every
+    source. When the stars trail at least ``config.trail_min_px`` over the exposure
+    (:func:`star_trail_px`), the trails found by
+    :func:`eotrack.imaging.trails.extract_trailed` (a trail's centroid is its midpoint, the
+    star at mid-exposure) replace the point detections inside their footprints (a trail's
+    length plus 2 PSF σ along it, 2 σ across); point detections elsewhere (the targets) stay.
+    """
+    cfg = PipelineConfig() if config is None else config
+    if not isinstance(cfg, PipelineConfig):
+        raise TypeError(f"config must be a PipelineConfig, got {type(cfg).__name__}")
+    trail = star_trail_px(frame, cfg.mount)
+    res = extract_stars(frame.image, config=cfg.sky, return_info=True)
+    xy, flux, snr = res.xy.reshape(-1, 2), res.flux, res.snr
+    length = float(np.hypot(*trail))
+    if length < cfg.trail_min_px:
+        return xy, flux, snr
+    # trailed stars: their trail-aware midpoints replace whatever the point extractor made of
+    # them (a point detection inside a trail's footprint); the point detections elsewhere
+    # (targets, and faint stars the trail filter did not take) are kept as they are
+    sky = cfg.sky
+    sig = sky.psf_sigma or 1.0
+    tr = extract_trailed(frame.image, trail, psf_sigma=sig, thresh=sky.thresh,
+                         background=sky.background)
+    txy = tr.xy[tr.is_trail]
+    if len(txy) and len(xy):
+        u_ = trail / length
+        d = xy[:, None, :] - txy[None, :, :]
+        along = np.abs(d @ u_)
+        perp = np.abs(d @ np.array([-u_[1], u_[0]]))
+        on = ((along <= length / 2 + 2 * sig) & (perp <= 2 * sig)).any(axis=1)
+        xy, flux, snr = xy[~on], flux[~on], snr[~on]
+    xy = np.concatenate([txy, xy])
+    flux = np.concatenate([tr.flux[tr.is_trail], flux])
+    snr = np.concatenate([tr.snr[tr.is_trail], snr])
+    order = np.argsort(-flux, kind="stable")
+    if sky.max_sources is not None:
+        order = order[: sky.max_sources]
+    return xy[order], flux[order], snr[order]
+
+
 def measure_frame(frame: Frame, catalog: StarCatalog | None = None, *,
                   config: PipelineConfig | None = None,
                   detections: tuple[Any, Any] | None = None) -> FrameMeasurement:
@@ -218,7 +298,8 @@ def measure_frame(frame: Frame, catalog: StarCatalog | None = None, *,
         Settings (default :class:`PipelineConfig`).
     detections
         ``(xy, flux)`` or ``(xy, flux, snr)`` already extracted (then ``frame.image`` is not
-        searched); ``xy`` ``(n, 2)`` px, brightest first.
+        searched); ``xy`` ``(n, 2)`` px, brightest first. Default :func:`extract_frame`
+        (trail-aware when the stars trail ≥ ``config.trail_min_px``).
 
     Returns
     -------
@@ -237,8 +318,7 @@ def measure_frame(frame: Frame, catalog: StarCatalog | None = None, *,
     if not isinstance(cfg, PipelineConfig):
         raise TypeError(f"config must be a PipelineConfig, got {type(cfg).__name__}")
     if detections is None:
-        res = extract_stars(frame.image, config=cfg.sky, return_info=True)
-        xy, flux, snr = res.xy.reshape(-1, 2), res.flux, res.snr
+        xy, flux, snr = extract_frame(frame, cfg)
     else:
         if not isinstance(detections, (tuple, list)) or len(detections) not in (2, 3):
             raise TypeError("detections must be (xy, flux) or (xy, flux, snr)")
@@ -454,10 +534,9 @@ def measure_frames(frames: Sequence[Frame | str | PathLike], catalog: StarCatalo
     for i, f in enumerate(good):
         stage = "extraction"
         try:
-            res = extract_stars(f.image, config=cfg.sky, return_info=True)
+            det = extract_frame(f, cfg)
             stage = "astrometry"
-            m = measure_frame(f, catalog, config=cfg,
-                              detections=(res.xy.reshape(-1, 2), res.flux, res.snr))
+            m = measure_frame(f, catalog, config=cfg, detections=det)
         except PlateSolveError as exc:
             _skip(skipped, f.frame_id, f.path, "astrometry", f"{exc} [{exc.reason}]")
             continue

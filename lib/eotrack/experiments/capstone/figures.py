@@ -170,7 +170,7 @@ def frame_example(plan: NightPlan, index: int, seed: int = 0) -> dict:
     cand = separate_targets(meas, radius_px=MATCH_PX)
     m0 = meas[0]
     guess = wcs_from_camera(K, b.R_believed[0], (n, n))
-    cat = catalog_in_field(guess, (n, n), max_mag=cfg.astrometry_mag, margin_px=20.0,
+    cat = catalog_in_field(guess, (n, n), max_mag=cfg.astrometry_limit, margin_px=20.0,
                            catalog=catalog)
     sb = np.column_stack(guess.wcs_world2pix(cat.ra_deg, cat.dec_deg, 0))
     ss = m0.solution.radec_to_pixel(cat.ra_deg, cat.dec_deg)
@@ -233,7 +233,8 @@ def plot_budget(result: NightResult, *, axes=None):
     a0, a1 = axes
     names = [lab for _, lab in _FRACTIONS]
     vals = [val.get(k, np.nan) for k, _ in _FRACTIONS]
-    for i, (st, v) in enumerate(zip(series_styles(len(vals)), vals, strict=True)):
+    st = series_styles(1)[0]  # one colour: the bars are named by their tick labels
+    for i, v in enumerate(vals):
         a0.bar(i, v, 0.7, **st.bar())
         a0.text(i, (v if np.isfinite(v) else 0) + 0.02, f"{v:.3f}", ha="center", fontsize=9)
     a0.set_xticks(range(len(names)), names)
@@ -301,7 +302,7 @@ def plot_prediction(prediction: pd.DataFrame, *, ax: plt.Axes | None = None) -> 
             parts[0] + "\n" + o[len(parts[0]):]
         return f"{st.split()[0]}\n{lab}"
 
-    ax.set_xticks(x, [tick(s, o) for s, o in tab.index], fontsize=8)
+    ax.set_xticks(x, [tick(s, o) for s, o in tab.index], fontsize=9)
     ax.set_ylim(0, None)
     ax.grid(axis="x", visible=False)
     label_axes(ax, x="station and object", y="RMS error in umbra", yunit="″", title=title)

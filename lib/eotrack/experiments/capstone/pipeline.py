@@ -46,6 +46,7 @@ from .scenario import (
     CapstoneConfig,
     NightPlan,
     camera_matrix,
+    expected_field_stars,
     make_plan,
 )
 
@@ -213,26 +214,29 @@ def _stars_for_burst(rng, plan: NightPlan, b) -> tuple[np.ndarray, np.ndarray, n
     wide = cosang >= np.cos(np.radians(8.0))
     a, slope = star_count_slope(m[wide], cfg.catalogue_mag - 3.0, cfg.catalogue_mag)
     cone_sr = 2 * np.pi * (1 - np.cos(np.radians(8.0)))
-    n_pix = 2 * cfg.size_px
+    # a square of 2 fields plus the burst's sidereal drift (60 px per frame at 5″/px)
+    drift = sidereal_drift_px(cfg) * (cfg.burst_frames - 1)
+    n_pix = int(np.ceil(2 * cfg.size_px + 2 * drift))
     K = camera_matrix(cfg)
     Kw = K.copy()
     Kw[0, 2] = Kw[1, 2] = (n_pix - 1) / 2.0
     img_sr = (n_pix / K[0, 0]) ** 2
-    xy_f, mag_f = synthetic_faint_stars(rng, a, slope, cfg.catalogue_mag, cfg.star_limit_mag,
+    xy_f, mag_f = synthetic_faint_stars(rng, a, slope, cfg.catalogue_mag, cfg.render_limit,
                                         (n_pix, n_pix), area_fraction=img_sr / cone_sr)
-    # the synthetic sky is laid out around the BELIEVED boresight (a 2 × 2 field square that
-    # covers the true field for pointing errors up to half a field), so the chain's catalogue
+    # the synthetic sky is laid out around the BELIEVED boresight (a 2 × 2 field square, widened
+    # by the burst's drift, that covers the true field for pointing errors up to half a field
+    # in every frame of the burst), so the chain's catalogue
     # does not depend on the true attitude
     dirs_f = pixel_rays(xy_f, Kw, b.R_believed[0]) if len(xy_f) else np.zeros((0, 3))
     dirs = np.concatenate([u_[near], dirs_f])
     mag = np.concatenate([m[near], mag_f])
-    cat = np.concatenate([np.ones(near.sum(), bool), mag_f <= cfg.astrometry_mag])
+    cat = np.concatenate([np.ones(near.sum(), bool), mag_f <= cfg.astrometry_limit])
     return dirs, mag, cat
 
 
 def burst_catalogue(plan: NightPlan, b, dirs: np.ndarray, mag: np.ndarray, cat: np.ndarray):
     """The chain's catalogue for a burst: the real Gaia band around the BELIEVED boresight plus
-    the synthetic stars brighter than ``astrometry_mag`` (standing in for the deeper Gaia DR3;
+    the synthetic stars brighter than ``astrometry_limit`` (standing in for the deeper Gaia DR3;
     see :class:`CapstoneConfig`), brightest first, as a :class:`~eotrack.astro.StarCatalog`."""
     from eotrack.astro.catalog import StarCatalog
 
@@ -294,15 +298,28 @@ def pipeline_config(config: CapstoneConfig, v_max_px_s: float):
     """The :class:`eotrack.pipeline.PipelineConfig` of the night's cameras."""
     from eotrack.pipeline import PipelineConfig
 
-    return PipelineConfig(sky=sky_config(config), catalog_mag=config.astrometry_mag,
+    return PipelineConfig(sky=sky_config(config), catalog_mag=config.astrometry_limit,
                           star_radius_px=MATCH_PX,
                           max_rate_arcsec_s=v_max_px_s * config.pixel_scale_arcsec)
 
 
 # ------------------------------------------------------------------ velocity gate
-@lru_cache(maxsize=16)
-def _rates_cached(cfg: CapstoneConfig) -> tuple[np.ndarray, np.ndarray]:
-    plan = make_plan(cfg)
+#: rates per configuration, also filled from a plan a worker receives (no second plan there)
+_RATES: dict[CapstoneConfig, tuple[np.ndarray, np.ndarray]] = {}
+
+
+def _rates_cached(cfg: CapstoneConfig, plan: NightPlan | None = None
+                  ) -> tuple[np.ndarray, np.ndarray]:
+    hit = _RATES.get(cfg)
+    if hit is None:
+        if len(_RATES) > 16:
+            _RATES.clear()
+        hit = _RATES[cfg] = _rates_of(make_plan(cfg) if plan is None else plan)
+    return hit
+
+
+def _rates_of(plan: NightPlan) -> tuple[np.ndarray, np.ndarray]:
+    cfg = plan.config
     t = plan.grid_s
     rates = np.zeros((len(cfg.stations), len(plan.names)))
     for s in range(len(cfg.stations)):
@@ -375,6 +392,7 @@ def observe_burst(rng: np.random.Generator, plan: NightPlan) -> BurstResult:
     n = cfg.size_px
     nf = cfg.burst_frames
     n_o = len(b.objs)
+    _rates_cached(cfg, plan)   # the gate from this plan (a worker does not build its own)
     v_max = velocity_gate(cfg)
     pcfg = pipeline_config(cfg, v_max)
     dirs, mag, cat = _stars_for_burst(rng, plan, b)
@@ -500,13 +518,15 @@ def observe_burst(rng: np.random.Generator, plan: NightPlan) -> BurstResult:
                        "penumbra": half, "unresolved": unres})
     # initiation GOSPA (Stone Soup) against the sunlit objects, from frame m − 1 on
     # (an object in the umbra cannot be seen: it is passed outside the field, i.e. not
-    # present; a burst with fewer than two scorable frames left — a clouded frame — gets none:
-    # Stone Soup's SIAP needs two time stamps)
+    # present). Every burst with a solved frame is scored: one that lost a frame (a cloud)
+    # keeps one scorable frame (initiation_metrics scores it by the SIAP reference count);
+    # one with fewer than m solved frames cannot initiate and is scored at its last frame
+    # (every sunlit object missed).
     gospa = {}
-    if len(frames) - (m_conf - 1) >= 2:
+    if frames:
         truth = [np.where(lit[:, k, None], b.target_xy[:, k], -1e3) for k in kept_k]
         gospa = initiation_metrics(init_tracks, frames, truth, width=float(n), c=5.0, p=1.0,
-                                   first_frame=m_conf - 1)
+                                   first_frame=min(m_conf - 1, len(frames) - 1))
     return BurstResult(b.station, b.obj, b.visit, b.objs, n_det, n_cat, n_cand, n_false, lit,
                        t_det, t_kept, solved, rms, n_match, perr, cams, failures, gospa, v_max,
                        tracks, perr_model)
@@ -982,13 +1002,9 @@ def predict_through_eclipse(plan: NightPlan, results: list[BurstResult],
         if len(obs) < min_points or after == 0:
             continue
         obs.sort(key=lambda q: (q[0], q[1]))
+        # the two stations observe at the same instants: fit_orbit takes equal times from
+        # different sites as they are
         t = np.array([q[0] for q in obs])
-        # two stations observe at the same instants; fit_orbit wants increasing times: a
-        # later duplicate is placed 1 ms after (the object moves ≈ 3 m, 10⁻³ of the
-        # triangulation error)
-        for i in range(1, len(t)):
-            if t[i] <= t[i - 1]:
-                t[i] = t[i - 1] + 1e-3
         site = np.stack([_station_at(plan, q[1], q[0]) for q in obs])
         ra_d, de_d = _radec_deg(np.stack([q[2] for q in obs]))
         try:
@@ -1102,6 +1118,7 @@ def error_budget(plan: NightPlan, bursts: list[BurstResult], pairs: pd.DataFrame
          found / max(n_lit_b, 1), "fraction"),
         ("initiation", "false tracks", false_t, "count"),
         ("initiation", "tracks", n_tracks, "count"),
+        ("initiation", "GOSPA: bursts scored", len(g), "count"),
         ("initiation", "GOSPA per burst (mean, c = 5 px)", gm["gospa"], "px"),
         ("initiation", "GOSPA: missed part", gm["gospa missed"], "px"),
         ("initiation", "GOSPA: false part", gm["gospa false"], "px"),
@@ -1204,8 +1221,9 @@ def run_night(config: CapstoneConfig | None = None, *, runner: TrialRunner | Non
             raise ValueError(f"stage 'astrometry': no plate solution in any of "
                              f"{sum(len(r.solved) for r in bursts)} frames ("
                              + ", ".join(f"{k} {v}" for k, v in why.items())
-                             + ") — too few catalogue stars in the field? (deepen "
-                             "astrometry_mag, widen the field, shorten trailed exposures)")
+                             + f") — about {expected_field_stars(cfg):.1f} detectable catalogue "
+                             "stars per field expected (widen the field, lower sky_e, deepen "
+                             "astrometry_mag)")
         if not any(r.target_kept.any() for r in bursts):
             raise ValueError(f"stage 'extraction': no object detected in any of "
                              f"{sum(len(r.solved) for r in bursts)} frames — no detection "

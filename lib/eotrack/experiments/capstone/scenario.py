@@ -8,6 +8,7 @@ stars, noise) are drawn per burst in :mod:`.pipeline`.
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass, field, replace
 from functools import lru_cache
 
@@ -28,9 +29,11 @@ from eotrack.astro import (
 from eotrack.geometry import PinholeCamera
 from eotrack.validation import check_int, check_positive
 
-__all__ = ["ARCSEC_PER_RAD", "DEFAULT_CLUSTER", "EARTH_RATE_RAD_S", "Burst", "CapstoneConfig",
-           "ClusterMember", "NightPlan", "StationSpec", "camera_matrix", "make_plan",
-           "member_satellite", "with_changes"]
+__all__ = ["ARCSEC_PER_RAD", "DEFAULT_CLUSTER", "DETECT_MARGIN", "EARTH_RATE_RAD_S",
+           "MIN_FIELD_STARS", "Burst", "CapstoneConfig", "ClusterMember", "NightPlan",
+           "StationSpec", "camera_matrix", "check_astrometry", "expected_field_stars",
+           "make_plan", "member_satellite", "star_detection_limit_mag", "star_snr",
+           "star_trail_px", "with_changes"]
 
 ARCSEC_PER_RAD = 180.0 / np.pi * 3600.0
 #: Earth's rotation rate (rad/s) — the sidereal drift of the stars in a GEO-staring mount.
@@ -148,7 +151,12 @@ class CapstoneConfig:
         few for a plate solution — so the synthetic stars to ``astrometry_mag`` are listed in
         the catalogue too, standing in for the full Gaia DR3 (complete to G ≈ 20) that a real
         station would use; the fainter synthetic stars stay uncatalogued (only their motion
-        marks them as stars).
+        marks them as stars). ``None`` (default): chosen from the field —
+        ``astrometry_mag`` keeps the expected number of catalogue stars per field at that of
+        the 1.07° field (256 px × 15″) at G ≤ 11.5 (the whole-sky count slope of the Gaia
+        extract), but no fainter than the stars the frames can detect
+        (:func:`star_detection_limit_mag`); ``star_limit_mag`` one magnitude fainter. Read the
+        values used from :attr:`astrometry_limit` and :attr:`render_limit`.
     min_elevation_deg, sun_max_alt_deg
         Observing limits.
     pointing_error_arcsec, roll_error_deg
@@ -182,9 +190,9 @@ class CapstoneConfig:
     read_noise_e: float = 8.0
     detect_sigma: float = 4.0
     target_mag: float = 12.5
-    star_limit_mag: float = 12.5
+    star_limit_mag: float | None = None
     catalogue_mag: float = 10.0
-    astrometry_mag: float = 11.5
+    astrometry_mag: float | None = None
     min_elevation_deg: float = 10.0
     sun_max_alt_deg: float = -12.0
     pointing_error_arcsec: float = 120.0
@@ -205,7 +213,13 @@ class CapstoneConfig:
             if m.parent not in self.norad_ids:
                 raise ValueError(f"cluster member {m.name}: its parent {m.parent} must be one "
                                  f"of norad_ids {self.norad_ids} (it shares the parent's field)")
-        if not self.catalogue_mag <= self.astrometry_mag <= self.star_limit_mag:
+        for name in ("astrometry_mag", "star_limit_mag"):
+            v = getattr(self, name)
+            if v is not None and not (isinstance(v, (int, float)) and np.isfinite(v)):
+                raise TypeError(f"{name} must be a finite number or None, got {v!r}")
+        a = self.catalogue_mag if self.astrometry_mag is None else self.astrometry_mag
+        lim = a if self.star_limit_mag is None else self.star_limit_mag
+        if not self.catalogue_mag <= a <= lim:
             raise ValueError("magnitudes must satisfy catalogue_mag ≤ astrometry_mag ≤ "
                              f"star_limit_mag, got {self.catalogue_mag}, {self.astrometry_mag}, "
                              f"{self.star_limit_mag}")
@@ -236,6 +250,23 @@ class CapstoneConfig:
                              "visit_interval_s")
 
     @property
+    def astrometry_limit(self) -> float:
+        """Faintest star of the chain's catalogue (G): ``astrometry_mag``, or chosen from the
+        field when it is None (see the class notes)."""
+        if self.astrometry_mag is not None:
+            return float(self.astrometry_mag)
+        _, b = _sky_counts()
+        ref = _REF_DEPTH_MAG + np.log10(_REF_FIELD_DEG2 / self.fov_deg ** 2) / b
+        return float(max(self.catalogue_mag, min(ref, star_detection_limit_mag(self))))
+
+    @property
+    def render_limit(self) -> float:
+        """Faintest star rendered (G): ``star_limit_mag`` or ``astrometry_limit + 1``."""
+        if self.star_limit_mag is not None:
+            return float(self.star_limit_mag)
+        return self.astrometry_limit + 1.0
+
+    @property
     def fov_deg(self) -> float:
         """Field of view (degrees)."""
         return self.size_px * self.pixel_scale_arcsec / 3600.0
@@ -255,6 +286,86 @@ class CapstoneConfig:
         """Index (into ``norad_ids``) of the field each object is seen in."""
         return tuple(range(len(self.norad_ids))) + tuple(self.norad_ids.index(m.parent)
                                                           for m in self.cluster)
+
+
+#: the reference field for the catalogue depth: 256 px × 15″ holds ≈ 30 stars to G ≤ 11.5
+_REF_DEPTH_MAG = 11.5
+_REF_FIELD_DEG2 = (256 * 15.0 / 3600.0) ** 2
+#: a catalogue star must reach this trail matched-filter SNR to count as detectable
+DETECT_MARGIN = 2.0
+
+
+@lru_cache(maxsize=1)
+def _sky_counts() -> tuple[float, float]:
+    """Whole-sky ``log₁₀ N(<G) = a + b G`` of the packaged Gaia extract over G 7–10, with
+    ``a`` per square degree."""
+    from eotrack.astro import load_catalog
+    from eotrack.imaging.starfield import star_count_slope
+
+    a, b = star_count_slope(load_catalog().mag, 7.0, 10.0)
+    return a - np.log10(4 * np.pi * (180 / np.pi) ** 2), b
+
+
+def star_trail_px(config: CapstoneConfig, dec_deg: float = 0.0) -> float:
+    """Length (px) of a star's trail over one exposure of the GEO-staring camera."""
+    return float(EARTH_RATE_RAD_S * config.exposure_s * ARCSEC_PER_RAD
+                 * np.cos(np.radians(dec_deg)) / config.pixel_scale_arcsec)
+
+
+def star_snr(config: CapstoneConfig, mag) -> np.ndarray:
+    """Matched-filter SNR of a star of magnitude ``mag`` drawn as its trail over one exposure
+    (at the equator): ``F / sqrt(F + (sky + read²) A)``, ``A = 1 / Σ k²`` the noise-equivalent
+    area of the unit-sum trail template (the filter :func:`eotrack.imaging.trails.extract_trailed`
+    applies; a point's ``4π σ²`` when the trail is short)."""
+    from eotrack.imaging.trails import trail_profile
+
+    s = config.psf_sigma_px
+    L = star_trail_px(config)
+    h = int(np.ceil(L / 2 + 4 * s))
+    g = np.arange(-h, h + 1, dtype=float)
+    k = trail_profile(g[None, :], g[:, None], (L, 0.0), s)
+    area = float(k.sum() ** 2 / (k ** 2).sum())
+    f = 10 ** (-0.4 * (np.asarray(mag, float) - config.zero_point_mag))
+    return f / np.sqrt(f + (config.sky_e + config.read_noise_e ** 2) * area)
+
+
+def star_detection_limit_mag(config: CapstoneConfig) -> float:
+    """Faintest star (G) whose :func:`star_snr` reaches ``detect_sigma + DETECT_MARGIN``."""
+    m = np.linspace(5.0, 22.0, 1701)
+    ok = star_snr(config, m) >= config.detect_sigma + DETECT_MARGIN
+    return float(m[ok].max()) if ok.any() else float(m[0])
+
+
+def expected_field_stars(config: CapstoneConfig, mag: float | None = None) -> float:
+    """Expected catalogue stars per field brighter than ``mag`` (default: the fainter-bound
+    of ``astrometry_limit`` and the detection limit) from the whole-sky counts — fields at low
+    galactic latitude hold more, near the poles fewer (≈ ×2 either way)."""
+    a, b = _sky_counts()
+    m = min(config.astrometry_limit, star_detection_limit_mag(config)) if mag is None \
+        else float(mag)
+    return float(10 ** (a + b * m) * config.fov_deg ** 2)
+
+
+#: fewer expected detectable catalogue stars per field than this warns (a plate solution
+#: needs 6 matched stars; a field of half the average density must still hold them)
+MIN_FIELD_STARS = 12.0
+
+
+def check_astrometry(config: CapstoneConfig) -> str | None:
+    """A warning message when the configuration's frames cannot hold enough detectable
+    catalogue stars for a plate solution (``expected_field_stars < MIN_FIELD_STARS``), else
+    None. :func:`make_plan` emits it as a :class:`UserWarning`."""
+    n = expected_field_stars(config)
+    if n >= MIN_FIELD_STARS:
+        return None
+    lim = star_detection_limit_mag(config)
+    return (f"stage 'astrometry' will fail in most frames: a {config.fov_deg:.2f}° field "
+            f"({config.size_px} px × {config.pixel_scale_arcsec:g}″) holds about {n:.1f} "
+            f"detectable catalogue stars (G ≤ {min(config.astrometry_limit, lim):.1f}; the "
+            f"trailed stars are detected to G ≈ {lim:.1f} against {config.sky_e:g} e⁻/px), "
+            f"fewer than {MIN_FIELD_STARS:g} — widen the field (size_px), lower the sky "
+            "background per pixel (sky_e) or, if the catalogue is the limit, deepen "
+            "astrometry_mag")
 
 
 def with_changes(config: CapstoneConfig | None = None, **changes) -> CapstoneConfig:
@@ -402,10 +513,19 @@ def make_plan(config: CapstoneConfig | None = None) -> NightPlan:
     ValueError
         Stage ``sky``: an object never rises above ``min_elevation_deg`` at a station during
         that station's dark hours, or a station has no dark hours at all.
+
+    Warns
+    -----
+    UserWarning
+        The frames cannot hold enough detectable catalogue stars for a plate solution
+        (:func:`check_astrometry`; the message names the settings to change).
     """
     cfg = CapstoneConfig() if config is None else config
     if not isinstance(cfg, CapstoneConfig):
         raise TypeError(f"config must be a CapstoneConfig, got {type(cfg).__name__}")
+    msg = check_astrometry(cfg)
+    if msg is not None:
+        warnings.warn(msg, UserWarning, stacklevel=2)
     return _plan_cached(cfg)
 
 
