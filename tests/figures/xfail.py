@@ -12,9 +12,5 @@ before the kernel recorded the lint's verdict: re-execute it).
 # bars/scatter lists/bands, deuteranopia pairs, 1e−03 labels); requests to the owners in
 # /tmp/coord/requests/fig-<slug>.md (comment: the rules each figure still fails)
 XFAIL: dict[str, str] = {
-    "case:track_init_ht.plot_schematic": "P03",  # overlapping-text 1 (multi-line labels)
-    "case:track_init_ht.explore_figure": "P03",  # log-labels 2 ('1e−12')
     "case:akf_star.plot_frames_schematic": "P05",  # overlapping-text 1
-    "case:capstone.plot_budget": "CAP",  # unkeyed-colours 1 (bars)
-    "case:capstone.plot_prediction": "CAP",  # small-text 6 (multi-line legend, 7.8 pt)
 }

@@ -13,7 +13,7 @@ import numpy as np
 import pandas as pd
 from matplotlib.figure import Figure
 from matplotlib.patches import Rectangle
-from matplotlib.ticker import LogFormatter, MaxNLocator, NullLocator
+from matplotlib.ticker import MaxNLocator, NullLocator
 
 from eotrack.plotting import get_ax
 from eotrack.tracking import hypothesis as hyp
@@ -71,9 +71,8 @@ def plot_schematic(*, p_f: float = 0.2, window: int = 5, target_pixels: int = 4,
     a1.set_xticks([])
     a1.set_yticks([])
     d = int(g.sum())
-    a1.set_title(f"window {n}×{n} ($W_S$ = {n * n}): D = {d} "
-                 f"{'≥' if d >= s else '<'} S = {s}\nblack: suspicious, hatched: target",
-                 fontsize=9)
+    a1.set_title(f"window {n}×{n}: D = {d} {'≥' if d >= s else '<'} S = {s}", fontsize=9)
+    a1.set_xlabel(f"$W_S$ = {n * n} pixels; black: suspicious,\nhatched: target", fontsize=9)
     # temporal test: a target drifting right, detected in most frames
     hits = rng.random(frames) < 0.75
     hits[0] = True
@@ -381,8 +380,8 @@ def _explore_artists() -> dict[str, Any]:
     }
     for a in (a1, a2):
         a.set_ylim(1e-12, 2)
-        a.set_yticks(10.0 ** np.arange(-12, 1, 3))
-        a.yaxis.set_major_formatter(LogFormatter())
+        # fixed decades as plain text (10⁻¹², …): no mathtext to re-parse on a redraw
+        a.set_yticks(10.0 ** np.arange(-12, 1, 3), ["10⁻¹²", "10⁻⁹", "10⁻⁶", "0.001", "1"])
         a.yaxis.set_minor_locator(NullLocator())
     a1.set(xlabel="clustering threshold S", ylabel="probability")
     a2.set(xlabel="hits needed T_h", ylabel="probability")
