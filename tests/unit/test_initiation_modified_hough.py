@@ -191,8 +191,10 @@ def test_votes_older_than_m_frames_do_not_count():
 
 
 # ----------------------------------------------------------------------------- verified mode
-def test_chi2_disc_is_the_test():
-    """A middle point off the line by just less / more than the χ² radius is kept / refused."""
+@pytest.mark.parametrize("kw", [dict(grow=False), dict(triplet_budget=0.0)])
+def test_chi2_disc_is_the_test(kw):
+    """A middle point off the line by just less / more than the χ² radius is kept / refused
+    (the causal engine, and the growth engine with the strict three-hit test)."""
     from scipy.stats import chi2
 
     sigma, alpha = 0.3, 1e-3
@@ -203,7 +205,7 @@ def test_chi2_disc_is_the_test():
     for off, n_want in ((0.98 * r, 1), (1.02 * r, 0)):
         mid = (a + b) / 2 + np.array([0.0, off])
         frames = [(0.0, a[None]), (1.0, mid[None]), (2.0, b[None])]
-        tracks = ModifiedHoughInitiator(sigma_px=sigma, alpha=alpha).initiate(frames)
+        tracks = ModifiedHoughInitiator(sigma_px=sigma, alpha=alpha, **kw).initiate(frames)
         assert len(tracks) == n_want
         if tracks:
             assert tracks[0].info["chi2"] == pytest.approx((off**2 / c) / sigma**2, rel=1e-6)
@@ -219,7 +221,7 @@ def test_verified_tracks_pass_the_rule(seed):
     rng = np.random.default_rng(seed)
     frames = [(float(k) + rng.uniform(0, 0.3), rng.uniform(0, 200, (rng.integers(0, 25), 2)))
               for k in range(6)]
-    ini = ModifiedHoughInitiator(sigma_px=0.8)
+    ini = ModifiedHoughInitiator(sigma_px=0.8, grow=False)
     tracks = ini.initiate(frames)
     seen = set()
     for tr in tracks:
@@ -326,8 +328,10 @@ def test_gapped_accelerating_windows_are_opt_in():
         return sum(1 for tr in tracks if len(tr.hits) >= 4
                    and len({d for _, d in tr.hits[:4]}) == 1 and tr.hits[0][1] < 3)
 
-    assert found(ModifiedHoughInitiator(v_min=3, v_max=240, accel_gapped=True)) == 3
-    assert found(ModifiedHoughInitiator(v_min=3, v_max=240)) < 3
+    assert found(ModifiedHoughInitiator(v_min=3, v_max=240, accel_gapped=True, grow=False)) == 3
+    assert found(ModifiedHoughInitiator(v_min=3, v_max=240, grow=False)) < 3
+    # the growth engine (default) grows them across the gap
+    assert found(ModifiedHoughInitiator(v_min=3, v_max=240)) == 3
     with pytest.raises(TypeError, match="accel_gapped"):
         ModifiedHoughInitiator(accel_gapped="yes")
 
@@ -358,8 +362,11 @@ def _pure_object(tracks, frames):
 
 def test_hold_and_confirm_prefers_the_longer_track():
     frames = _stolen_scene()
-    plain = ModifiedHoughInitiator(v_min=3, v_max=240).initiate(frames)
-    held = ModifiedHoughInitiator(v_min=3, v_max=240, hold_triplets=True).initiate(frames)
+    plain = ModifiedHoughInitiator(v_min=3, v_max=240, grow=False).initiate(frames)
+    held = ModifiedHoughInitiator(v_min=3, v_max=240, hold_triplets=True,
+                                  grow=False).initiate(frames)
+    grown = _pure_object(ModifiedHoughInitiator(v_min=3, v_max=240).initiate(frames), frames)
+    assert len(grown) == 1 and len(grown[0].hits) == 4
     # without holding, the decoy triplet is confirmed at frame 2 and takes the object's hits
     assert not _pure_object(plain, frames)
     good = _pure_object(held, frames)
@@ -372,9 +379,13 @@ def test_acceleration_aware_triplets_find_a_three_hit_accelerating_object():
     t = np.array([0.0, 1.4, 3.0])
     p0, v0, acc = np.array([60.0, 300.0]), np.array([35.0, -20.0]), np.array([3.0, 2.8])
     frames = [(float(tk), (p0 + v0 * tk + 0.5 * acc * tk**2)[None]) for tk in t]
-    cv = ModifiedHoughInitiator(v_min=3, v_max=240).initiate(frames)
-    aware = ModifiedHoughInitiator(v_min=3, v_max=240, accel_triplets=True).initiate(frames)
+    cv = ModifiedHoughInitiator(v_min=3, v_max=240, grow=False).initiate(frames)
+    aware = ModifiedHoughInitiator(v_min=3, v_max=240, accel_triplets=True,
+                                   grow=False).initiate(frames)
     assert cv == [] and len(aware) == 1 and aware[0].info["n_hits"] == 3
+    strict = ModifiedHoughInitiator(v_min=3, v_max=240, triplet_budget=0.0).initiate(frames)
+    grown = ModifiedHoughInitiator(v_min=3, v_max=240).initiate(frames)
+    assert strict == [] and len(grown) == 1 and grown[0].info["n_hits"] == 3
     with pytest.raises(ValueError, match="chance_budget"):
         ModifiedHoughInitiator(chance_budget=-1.0)
 
@@ -387,6 +398,11 @@ def test_acceleration_aware_triplets_find_a_three_hit_accelerating_object():
     (dict(accel_gapped=True, accel_px_s2=0.0), "accel_px_s2"),
     (dict(chance_budget=5.0), "chance_budget"),
     (dict(field_px=(512.0, 512.0)), "field_px"),
+    (dict(hold_triplets=True), "grow=False"),
+    (dict(accel_triplets=True), "grow=False"),
+    (dict(accel_gapped=True), "grow=False"),
+    (dict(grow_chance=0.0), "grow_chance"),
+    (dict(share_missed=-2), "share_missed"),
 ])
 def test_options_that_would_be_ignored_are_refused(kw, word):
     """Review r3 #8: a public option that would be silently ignored raises, naming it."""
@@ -398,10 +414,10 @@ def test_density_cap_keeps_the_constant_velocity_disc_in_a_burst():
     """With a tiny chance budget the widened disc falls back to the constant-velocity one."""
     rng = np.random.default_rng(2)
     frames = [(float(k), rng.uniform(0, 512, (150, 2))) for k in range(4)]
-    cv = ModifiedHoughInitiator(v_min=3, v_max=240).run(frames, log=True)
-    capped = ModifiedHoughInitiator(v_min=3, v_max=240, accel_triplets=True,
+    cv = ModifiedHoughInitiator(v_min=3, v_max=240, grow=False).run(frames, log=True)
+    capped = ModifiedHoughInitiator(v_min=3, v_max=240, accel_triplets=True, grow=False,
                                     chance_budget=1e-9).run(frames, log=True)
-    wide = ModifiedHoughInitiator(v_min=3, v_max=240, accel_triplets=True,
+    wide = ModifiedHoughInitiator(v_min=3, v_max=240, accel_triplets=True, grow=False,
                                   chance_budget=0.0).run(frames, log=True)
     n = [sum(e["triplets"] for e in r.log) for r in (cv, capped, wide)]
     assert n[0] == n[1] < n[2]

@@ -32,6 +32,7 @@ vectorised.
 
 from __future__ import annotations
 
+import functools
 import itertools
 import math
 from collections.abc import Sequence
@@ -50,6 +51,12 @@ __all__ = ["ModifiedHoughInitiator", "ModifiedHoughRun", "line_through_points", 
 
 _BITS = 32
 _MAX_M = 16
+
+
+@functools.lru_cache(maxsize=256)
+def _chi2_ppf(q: float, dof: int) -> float:
+    """``scipy.stats.chi2.ppf`` (cached: it costs milliseconds per call)."""
+    return float(_chi2_dist.ppf(q, dof))
 
 
 def line_through_points(xy: np.ndarray) -> tuple[float, float]:
@@ -171,6 +178,42 @@ class ModifiedHoughInitiator:
         detection per frame whose consecutive pairs map to the cell or a 26-neighbour, all
         within δρ/2 of their constant-velocity fit). ``False`` runs the paper's bare procedure:
         the hits are the cell's points, one per frame (the one nearest the fit).
+    grow
+        Verified initiator with ``accel_px_s2 > 0`` (the default): **track growth** over the
+        whole sequence (a batch decision; issue 27). Acceleration-widened 3-of-4 seeds are
+        grown frame by frame with a least-squares constant-acceleration fit (irregular
+        intervals and missed frames allowed), and one best-first selection over the whole
+        sequence prefers longer tracks, so chance triplets (a clutter burst's too) cannot take
+        the detections of a longer track; see ``_GrowEngine``. A track's ``confirmed_at`` is
+        the first frame at which its hits meet the ``(m−1)/m`` rule. ``False``: the causal
+        frame-by-frame engine (the options ``hold_triplets``, ``accel_triplets``,
+        ``accel_gapped`` act there only).
+    seed_budget
+        Growth: the acceleration widening of a seed shape's disc is cut so that it holds at
+        most this many chance seeds per frame triple in expectation (``0``: no cut).
+    grow_chance
+        Growth: the growth disc of a frame is cut so that it holds at most this many chance
+        detections in expectation (the frame's own detection count: a burst frame gets a
+        smaller disc).
+    triplet_budget
+        Growth: a three-hit track failing the constant-velocity χ² test is still a candidate
+        when its middle hit lies within the largest acceleration offset of its chord, that
+        widening cut so such discs hold at most this many chance triplets per frame triple in
+        expectation, and its constant-velocity fit crosses at most ``max_missed`` in-field
+        frames without a hit. ``0``: three-hit tracks must pass the constant-velocity test.
+    max_missed
+        See ``triplet_budget``.
+    miss_weight
+        Growth: rank of a candidate = hits − ``miss_weight`` × in-field frames without a hit
+        (then the fit's p-value).
+    share_missed
+        Growth: a three-hit candidate lost in the selection that shares exactly one detection
+        with selected three-hit tracks (none with longer ones) and misses at most this many
+        in-field frames is also reported (ambiguous triplets both kept); ``−1``: never.
+    grow_max_seeds
+        Growth is skipped (the causal engine runs) when, in the median frame, the unwidened
+        χ² discs alone would hold more than this many chance seeds per frame triple (crowded
+        frames, e.g. ≳ 400 uniform detections per 512² frame).
     """
 
     d_rho: float = 5.0
@@ -193,6 +236,14 @@ class ModifiedHoughInitiator:
     chance_budget: float = 2.0
     field_px: tuple[float, float] | None = None
     cv_check: bool = True
+    grow: bool = True
+    seed_budget: float = 100.0
+    grow_chance: float = 0.01
+    triplet_budget: float = 10.0
+    max_missed: int = 2
+    miss_weight: float = 0.25
+    share_missed: int = 1
+    grow_max_seeds: float = 5000.0
 
     def __post_init__(self) -> None:
         check_positive(self.d_rho, "d_rho")
@@ -233,6 +284,18 @@ class ModifiedHoughInitiator:
         if not self.literal and self.m < 4:
             raise ValueError(f"the verified initiator (literal=False) needs m >= 4 (a triplet "
                              f"plus the window), got m={self.m}; use literal=True for m < 4")
+        if not isinstance(self.grow, (bool, np.bool_)):
+            raise TypeError(f"grow must be True or False, got {self.grow!r}")
+        for name in ("seed_budget", "grow_chance", "triplet_budget", "miss_weight",
+                     "grow_max_seeds"):
+            check_positive(getattr(self, name), name, allow_zero=True)
+        check_positive(self.grow_chance, "grow_chance")
+        check_int(self.max_missed, "max_missed", min_value=0)
+        check_int(self.share_missed, "share_missed", min_value=-1)
+        if self.grow and not self.literal and self.accel_px_s2 > 0 and (
+                self.hold_triplets or self.accel_triplets or self.accel_gapped):
+            raise ValueError("hold_triplets, accel_triplets and accel_gapped act on the causal "
+                             "engine only: pass grow=False with them")
         if self.neighbourhood not in (6, 26):
             raise ValueError(f"neighbourhood must be 6 (the paper's) or 26, got "
                              f"{self.neighbourhood!r}")
@@ -261,6 +324,10 @@ class ModifiedHoughInitiator:
         if not self.literal:
             xys = [f.xy[p] for f, p in zip(fr, perms)]
             work = [Frame(float(t), x) for t, x in zip(times, xys)]
+            if self.grow and self.accel_px_s2 > 0:
+                eng = _GrowEngine(self, xys, times, work, perms, log)
+                if eng.crowded() <= self.grow_max_seeds:
+                    return eng.run()
             return _VerifiedEngine(self, xys, times, work, perms, log).run()
         o = np.asarray(self.origin_px, dtype=float)
         xys = [f.xy[p] - o for f, p in zip(fr, perms)]
@@ -739,7 +806,6 @@ class _VerifiedEngine:
     """
 
     def __init__(self, cfg: ModifiedHoughInitiator, xys, times, frames, perms, log: bool):
-        from scipy.stats import chi2
 
         self.cfg = cfg
         self.xys = xys
@@ -753,14 +819,14 @@ class _VerifiedEngine:
         self.hold = bool(cfg.hold_triplets)
         self.slots = cfg.m + 1 if self.hold else cfg.m
         self.thr = np.array([np.inf, np.inf, np.inf]
-                            + [float(chi2.ppf(1.0 - cfg.alpha, 2 * (n - 2)))
+                            + [_chi2_ppf(1.0 - cfg.alpha, 2 * (n - 2))
                                for n in range(3, self.slots + 1)])
         # acceleration variance per image axis (along and cross uniform in ±a): a²/3
         self.q_acc = (cfg.accel_px_s2**2 / 3.0 if cfg.accel_triplets else 0.0)
         self.held = np.zeros((0, 3), dtype=np.int64)
         self.last = len(xys) - 1
         self.chance_budget = float(cfg.chance_budget)
-        self._thr2 = float(chi2.ppf(1.0 - cfg.alpha, 2))
+        self._thr2 = _chi2_ppf(1.0 - cfg.alpha, 2)
         sizes = [len(x) for x in xys]
         self.off = np.concatenate([[0], np.cumsum(sizes)]).astype(np.int64)
         self.avail_flat = np.ones(int(self.off[-1]), dtype=bool)
@@ -1109,6 +1175,383 @@ class _VerifiedEngine:
             rows = np.concatenate([rows, ext])
         return rows
 
+
+class _GrowEngine(_VerifiedEngine):
+    """The verified initiator with track growth over the whole sequence (internal; ``grow``).
+
+    1. **Seeds**: the three 3-of-4 triplet shapes of every frame ``k`` — the outer pair
+       ``(k−2, k)`` with the third detection in ``k−1``, ``(k−3, k)`` with the third in ``k−2``
+       or ``k−1`` — found with the χ² disc of the constant-velocity interpolation widened by
+       the largest acceleration offset ``a√2/2·|(t − t_a)(t − t_b)|`` (``a = accel_px_s2``),
+       cut per frame triple so that the widened discs hold at most ``seed_budget`` chance
+       triplets in expectation (uniform clutter over the field).
+    2. **Growth**: every seed takes, frame by frame (nearest in time first, inside frames
+       before outside), the nearest detection inside the χ² (2 d.o.f.) disc of its
+       least-squares **constant-acceleration** fit's prediction (prediction variance from the
+       fit's leverage, so irregular intervals and gaps are handled), the disc cut per frame so
+       that it holds at most ``grow_chance`` chance detections in expectation (a burst frame
+       gets a smaller disc); a hit is kept if the fit's χ² (``2(n − 3)`` d.o.f.) still passes.
+    3. **Candidates**: grown tracks of ≥ 4 hits (constant-acceleration χ²), and seeds that did
+       not grow if they pass the strict constant-velocity χ² test (the paper-scene rule), all
+       inside the velocity gate.
+    4. **Conflicts**: one best-first selection over the whole sequence — more hits first, then
+       the fit's p-value — so a chance triplet (through a burst frame or not) cannot take a
+       detection from a longer track. A track's ``confirmed_at`` is the first frame at which
+       its hits meet the ``(m−1)/m`` rule.
+    """
+
+    def __init__(self, cfg, xys, times, frames, perms, log):
+        super().__init__(cfg, xys, times, frames, perms, log)
+
+        n_f = len(xys)
+        self.q_acc = 0.0
+        self.chance_budget = 0.0
+        # χ² thresholds of the constant-acceleration fit: 2 (n − 3) d.o.f. for n hits
+        self.thr_ca = np.array([np.inf] * 4 + [_chi2_ppf(1.0 - cfg.alpha, 2 * (n - 3))
+                                               for n in range(4, max(n_f, 4) + 1)])
+        self.thr_cv3 = _chi2_ppf(1.0 - cfg.alpha, 2)
+        if cfg.field_px is not None:
+            self.area = float(cfg.field_px[0]) * float(cfg.field_px[1])
+        elif len(self.xy_flat) >= 2:
+            q = np.percentile(self.xy_flat, [1.0, 99.0], axis=0)
+            self.area = max(float(np.prod(q[1] - q[0] + 1.0)), 1.0)
+        else:
+            self.area = 1.0
+        if len(self.xy_flat):
+            self.box = (self.xy_flat.min(axis=0), self.xy_flat.max(axis=0))
+        else:
+            self.box = (np.zeros(2), np.zeros(2))
+        self.n_det = np.array([len(x) for x in xys], dtype=float)
+
+    def crowded(self) -> float:
+        """Median over frames ``k`` of the expected chance seeds of shape ``(k−2, k | k−1)``
+        inside the unwidened χ² disc (uniform clutter): the growth is skipped above
+        ``grow_max_seeds`` (crowded frames: the causal engine with its depletion)."""
+        t, n = self.times, self.n_det
+        if len(t) < 3:
+            return 0.0
+        dt = t[2:] - t[:-2]
+        lam = (t[1:-1] - t[:-2]) / dt
+        r02 = self.sigma**2 * self.thr_cv3 * (1.0 + lam**2 + (1.0 - lam) ** 2)
+        pairs = n[:-2] * n[2:] * np.minimum(1.0, math.pi * (self.cfg.v_max * dt) ** 2
+                                            / self.area)
+        return float(np.median(pairs * n[1:-1] * math.pi * r02 / self.area))
+
+    def run(self) -> ModifiedHoughRun:
+        n_f = len(self.xys)
+        seeds = [self._seeds(k) for k in range(2, n_f)]
+        self.n_seeds = [0, 0][:n_f] + [len(x) for x in seeds]
+        seeds = [s for s in seeds if len(s)]
+        if not seeds:
+            return ModifiedHoughRun([], self._log([], []))
+        trip = np.concatenate(seeds)
+        # the frame triples of the shapes are distinct, so no seed is found twice
+        trip = np.take_along_axis(trip, np.argsort(self.frame_of[trip], axis=1), 1)
+        tri = self._tri_stats(trip)
+        rows = np.full((len(trip), n_f), -1, dtype=np.int64)
+        np.put_along_axis(rows, self.frame_of[trip], trip, axis=1)
+        grown, rss_g = self._grow(rows, tri)
+        nh = (grown >= 0).sum(axis=1)
+        long_ = nh >= 4
+        cands, chis, dofs, fits = [], [], [], []
+        if np.any(long_):
+            g4, first = np.unique(grown[long_], axis=0, return_index=True)
+            _, tm4, pm4, v4, _ = self._fit(g4, self.times)
+            cands.append(g4)
+            chis.append(rss_g[long_][first] / self.sigma**2)
+            dofs.append(2 * ((g4 >= 0).sum(axis=1) - 3))
+            fits.append((tm4, pm4, v4, self._missed(g4 >= 0, pm4, v4, tm4)))
+        # three-hit candidates: the seeds that did not grow, through the strict
+        # constant-velocity test or as accelerating triplets (``triplet_budget``)
+        s3 = np.flatnonzero(~long_)
+        if len(s3):
+            t3 = {k: val[s3] for k, val in tri.items()}
+            chi = t3["chi_cv"]
+            speed = np.hypot(t3["v"][:, 0], t3["v"][:, 1])
+            ok = (chi <= self.thr_cv3) | (
+                (self.cfg.triplet_budget > 0) & (t3["e2"] <= t3["r_acc"] ** 2))
+            ok &= (speed >= self.cfg.v_min) & (speed <= self.cfg.v_max)
+            s3 = s3[ok]
+            t3 = {k: val[ok] for k, val in t3.items()}
+            missed = self._missed(rows[s3] >= 0, t3["pm"], t3["v"], t3["tm"])
+            keep = (t3["chi_cv"] <= self.thr_cv3) | (missed <= self.cfg.max_missed)
+            s3 = s3[keep]
+            cands.append(rows[s3])
+            chis.append(t3["chi_cv"][keep])
+            dofs.append(np.full(len(s3), 2))
+            fits.append((t3["tm"][keep], t3["pm"][keep], t3["v"][keep], missed[keep]))
+        rows = np.concatenate(cands)
+        chi = np.concatenate(chis)
+        dof = np.concatenate(dofs)
+        if len(rows) == 0:
+            return ModifiedHoughRun([], self._log([], []))
+        _tm, pm, v, missed = (np.concatenate(x) for x in zip(*fits))
+        speed = np.hypot(v[:, 0], v[:, 1])
+        ok = (speed >= self.cfg.v_min) & (speed <= self.cfg.v_max)
+        rows, chi, dof, pm, v, missed = rows[ok], chi[ok], dof[ok], pm[ok], v[ok], missed[ok]
+        nh = (rows >= 0).sum(axis=1)
+        key = nh - self.cfg.miss_weight * missed
+        # log p-value of the fit (closed form for 2 d.o.f., the three-hit tracks)
+        lp = -0.5 * chi
+        big = dof != 2
+        if np.any(big):
+            lp[big] = _chi2_dist.logsf(chi[big], dof[big])
+        order = np.lexsort((-lp, -key))
+        pos = np.empty(len(rows), dtype=np.int64)
+        pos[order] = np.arange(len(rows))
+        win = greedy_disjoint(rows, pos, len(self.avail_flat))
+        if self.cfg.share_missed >= 0:
+            win = self._second_chance(rows, pos, nh, win, missed)
+        self.cand_conf = self._confirmed_at(rows >= 0)
+        rows, chi, nh, pm, v = rows[win], chi[win], nh[win], pm[win], v[win]
+        conf = self.cand_conf[win]
+        infos = _track_infos(pm, v, self.cfg.origin_px)
+        tracks = []
+        for r, c, n, k, info in zip(rows.tolist(), chi.tolist(), nh.tolist(), conf.tolist(),
+                                    infos):
+            info.update(method="modified_hough", chi2=c, n_hits=int(n), grown=True)
+            hits = [(f, int(self.perms[f][g - self.off[f]])) for f, g in enumerate(r) if g >= 0]
+            tracks.append(Track(hits=hits, confirmed_at=int(k), info=info))
+        o = np.argsort(conf, kind="stable")
+        tracks = [tracks[i] for i in o]
+        return ModifiedHoughRun(tracks, self._log(rows, conf))
+
+    def _second_chance(self, rows, pos, nh, win, missed) -> np.ndarray:
+        """Three-hit candidates lost in the selection that share exactly one detection with
+        selected three-hit tracks (none with longer ones) and have at most ``share_missed``
+        in-field frames without a hit are added, disjoint among themselves (a detection is in
+        at most two tracks)."""
+        n = len(self.avail_flat)
+        cnt = np.zeros(n, np.int64)
+        long_used = np.zeros(n, bool)
+        wr = rows[win]
+        cnt[wr[wr >= 0]] += 1
+        wl = wr[nh[win] >= 4]
+        long_used[wl[wl >= 0]] = True
+        lost = np.ones(len(rows), bool)
+        lost[win] = False
+        c = np.flatnonzero(lost & (nh == 3) & (missed <= self.cfg.share_missed))
+        if len(c) == 0:
+            return win
+        r = rows[c]
+        g = np.maximum(r, 0)
+        shared = ((r >= 0) & (cnt[g] > 0)).sum(axis=1)
+        ok = (shared == 1) & ~np.any((r >= 0) & long_used[g], axis=1)
+        c = c[ok]
+        if len(c) == 0:
+            return win
+        # disjoint among themselves (so a detection is in at most two tracks)
+        add = c[greedy_disjoint(rows[c], pos[c], n)]
+        return np.concatenate([win, add])
+
+    def _tri_stats(self, trip: np.ndarray) -> dict:
+        """Per seed (three global ids in frame order): times, the middle hit's squared
+        deviation ``e2`` from the chord, the constant-velocity χ² (``e2 / (σ² c)``,
+        ``c = 1 + λ² + (1 − λ)²``), the least-squares constant-velocity fit (mean time,
+        position, velocity) and the acceptance radius ``r_acc`` of an accelerating triplet:
+        the χ² disc widened by the largest acceleration offset ``a√2/2 (t2 − t1)(t3 − t2)``,
+        cut so that such discs hold at most ``triplet_budget`` chance triplets per frame
+        triple in expectation (never below the χ² disc)."""
+        cfg = self.cfg
+        f = self.frame_of[trip]
+        t = self.times[f]
+        p = self.xy_flat[trip]
+        t1, t2, t3 = t[:, 0], t[:, 1], t[:, 2]
+        lam = (t2 - t1) / (t3 - t1)
+        e = p[:, 1] - p[:, 0] - lam[:, None] * (p[:, 2] - p[:, 0])
+        e2 = e[:, 0] ** 2 + e[:, 1] ** 2
+        cfac = 1.0 + lam**2 + (1.0 - lam) ** 2
+        tm = t.mean(axis=1)
+        tc = t - tm[:, None]
+        pm = p.mean(axis=1)
+        v = np.einsum("nk,nkc->nc", tc, p) / (tc * tc).sum(axis=1)[:, None]
+        r0 = self.sigma * np.sqrt(self.thr_cv3 * cfac)
+        widen = cfg.accel_px_s2 * math.sqrt(2.0) / 2.0 * (t2 - t1) * (t3 - t2)
+        n1, n2, n3 = self.n_det[f[:, 0]], self.n_det[f[:, 1]], self.n_det[f[:, 2]]
+        n_pairs = n1 * n3 * np.minimum(1.0, math.pi * (cfg.v_max * (t3 - t1)) ** 2 / self.area)
+        r_b = np.sqrt(cfg.triplet_budget * self.area
+                      / (math.pi * np.maximum(n_pairs * n2, 1.0)))
+        r_acc = np.maximum(r0, np.minimum(r0 + widen, r_b))
+        return {"t1": t1, "t2": t2, "t3": t3, "p": p, "e2": e2, "chi_cv": e2 / (self.sigma**2 * cfac),
+                "tm": tm, "pm": pm, "v": v, "r_acc": r_acc}
+
+    def _missed(self, hit, pm, v, tm) -> np.ndarray:
+        """Frames in which a row's constant-velocity fit lies inside the field (the box of all
+        detections) without a hit (``hit``: ``(n, frames)`` booleans)."""
+        dt = self.times[None, :] - tm[:, None]
+        x = pm[:, 0:1] + v[:, 0:1] * dt
+        y = pm[:, 1:2] + v[:, 1:2] * dt
+        (x0, y0), (x1, y1) = self.box
+        inside = (x >= x0) & (x <= x1) & (y >= y0) & (y <= y1)
+        return (inside & ~hit).sum(axis=1)
+
+    def _log(self, rows, conf) -> list[dict]:
+        if not self.log_on:
+            return []
+        conf = np.asarray(conf, dtype=np.int64)
+        cand = getattr(self, "cand_conf", np.zeros(0, np.int64))
+        seeds = getattr(self, "n_seeds", [0] * len(self.xys))
+        out = []
+        for k in range(len(self.xys)):
+            n_c, n_w = int(np.sum(cand == k)), int(np.sum(conf == k))
+            out.append({"frame": k, "time_s": float(self.times[k]),
+                        "candidates": len(self.xys[k]), "triplets": int(seeds[k]),
+                        "candidate tracks": n_c, "conflicts": max(n_c - n_w, 0),
+                        "confirmed": n_w})
+        return out
+
+    def _confirmed_at(self, hit: np.ndarray) -> np.ndarray:
+        """First frame at which the hits of each row meet the (m−1)/m rule."""
+        m = self.m
+        c = np.concatenate([np.zeros((len(hit), 1), np.int64), np.cumsum(hit, axis=1)], 1)
+        n_f = hit.shape[1]
+        lo = np.maximum(np.arange(n_f) - m + 1, 0)
+        win = c[:, 1:] - c[:, lo]
+        ok = win >= m - 1
+        return np.where(ok.any(axis=1), np.argmax(ok, axis=1), n_f - 1)
+
+    # -- seeds -------------------------------------------------------------------
+    def _seeds(self, k: int) -> np.ndarray:
+        shapes = [(k - 2, k, k - 1)]
+        if k >= 3:
+            shapes += [(k - 3, k, k - 2), (k - 3, k, k - 1)]
+        out = [self._seed_shape(*s) for s in shapes]
+        out = [o for o in out if len(o)]
+        return np.concatenate(out) if out else np.zeros((0, 3), dtype=np.int64)
+
+    def _seed_shape(self, fa: int, fb: int, ft: int) -> np.ndarray:
+        cfg = self.cfg
+        n_a, n_b, n_t = self.n_det[fa], self.n_det[fb], self.n_det[ft]
+        if n_a == 0 or n_b == 0 or n_t == 0:
+            return np.zeros((0, 3), dtype=np.int64)
+        ta, tb, tt = self.times[fa], self.times[fb], self.times[ft]
+        dt = tb - ta
+        tau = (tt - tb) / dt
+        r0 = self.sigma * math.sqrt(self.thr[3] * (1.0 + (1.0 + tau) ** 2 + tau**2))
+        widen = cfg.accel_px_s2 * math.sqrt(2.0) / 2.0 * abs((tt - ta) * (tt - tb))
+        if cfg.seed_budget > 0:
+            n_pairs = n_a * n_b * min(1.0, math.pi * (cfg.v_max * dt) ** 2 / self.area)
+            r_b = math.sqrt(cfg.seed_budget * self.area / (math.pi * max(n_pairs * n_t, 1.0)))
+            widen = max(0.0, min(widen, r_b - r0))
+        return self._triplets(fa, fb, ft, widen=widen)
+
+    # -- growth --------------------------------------------------------------------
+    def _grow(self, seed_rows: np.ndarray, tri: dict) -> tuple[np.ndarray, np.ndarray]:
+        """Grow the seeds (rows of global ids per frame, −1 empty) with the least-squares
+        constant-acceleration fit; returns the grown rows and their residual sums of squares."""
+        t = self.times
+        n_f = len(t)
+        cfg = self.cfg
+        rows = seed_rows.copy()
+        cap = np.sqrt(cfg.grow_chance * self.area / (math.pi * np.maximum(self.n_det, 1.0)))
+        grids = [PointGrid(self.xys[f], float(cap[f])) if len(self.xys[f]) else None
+                 for f in range(n_f)]
+        tried = rows >= 0
+        thr2 = self._thr2
+        n = len(rows)
+        rss = np.zeros(n)  # the seeds' quadratics pass through their three hits
+        nh = np.full(n, 3)
+        lo, hi = tri["t1"].copy(), tri["t3"].copy()
+        ts = np.stack([tri["t1"], tri["t2"], tri["t3"]], 1)
+        for _ in range(n_f - 3):
+            dist = np.maximum(np.maximum(lo[:, None] - t[None, :], t[None, :] - hi[:, None]),
+                              0.0)
+            dist[tried] = np.inf
+            target = np.argmin(dist, axis=1)
+            act = np.flatnonzero(np.isfinite(dist[np.arange(n), target]))
+            if len(act) == 0:
+                break
+            tgt = target[act]
+            tq = t[tgt]
+            pred = np.empty((len(act), 2))
+            lev = np.empty(len(act))
+            three = nh[act] == 3
+            i3 = act[three]
+            if len(i3):
+                # three hits: the quadratic through them (Lagrange), variance σ² Σ L_i²
+                tt = ts[i3]
+                q = tq[three][:, None]
+                lag = np.stack([(q[:, 0] - tt[:, 1]) * (q[:, 0] - tt[:, 2])
+                                / ((tt[:, 0] - tt[:, 1]) * (tt[:, 0] - tt[:, 2])),
+                                (q[:, 0] - tt[:, 0]) * (q[:, 0] - tt[:, 2])
+                                / ((tt[:, 1] - tt[:, 0]) * (tt[:, 1] - tt[:, 2])),
+                                (q[:, 0] - tt[:, 0]) * (q[:, 0] - tt[:, 1])
+                                / ((tt[:, 2] - tt[:, 0]) * (tt[:, 2] - tt[:, 1]))], 1)
+                pred[three] = np.einsum("nk,nkc->nc", lag, tri["p"][i3])
+                lev[three] = (lag * lag).sum(axis=1)
+            if not np.all(three):
+                pred[~three], lev[~three] = _ca_predict(t, self.xy_flat, rows[act[~three]],
+                                                        tq[~three])
+            r = np.minimum(self.sigma * np.sqrt(thr2 * (1.0 + lev)), cap[tgt])
+            tried[act, tgt] = True
+            new_r, new_f, new_g, new_d = [], [], [], []
+            for f in np.unique(tgt).tolist():
+                if grids[f] is None:
+                    continue
+                sel = np.flatnonzero(tgt == f)
+                qi, pi, d2 = grids[f].query(pred[sel], r[sel], sort=False)
+                if len(qi) == 0:
+                    continue
+                o = np.lexsort((d2, qi))
+                qi, pi, d2 = qi[o], pi[o], d2[o]
+                keep = np.r_[True, qi[1:] != qi[:-1]]
+                new_r.append(sel[qi[keep]])
+                new_f.append(np.full(int(keep.sum()), f))
+                new_g.append(self.off[f] + pi[keep])
+                new_d.append(d2[keep])
+            if not new_r:
+                continue
+            j = np.concatenate(new_r)
+            ri, fi, gi = act[j], np.concatenate(new_f), np.concatenate(new_g)
+            # least squares: a new hit at distance d from the prediction adds d²/(1 + leverage)
+            rss_new = rss[ri] + np.concatenate(new_d) / (1.0 + lev[j])
+            ok = rss_new / self.sigma**2 <= self.thr_ca[nh[ri] + 1]
+            ri, fi = ri[ok], fi[ok]
+            rows[ri, fi] = gi[ok]
+            rss[ri] = rss_new[ok]
+            nh[ri] += 1
+            lo[ri] = np.minimum(lo[ri], t[fi])
+            hi[ri] = np.maximum(hi[ri], t[fi])
+        return rows, rss
+
+def _ca_fit(t: np.ndarray, xy: np.ndarray, rows: np.ndarray):
+    """Least-squares constant-acceleration (quadratic) fits of rows of hits (global ids, −1
+    empty; column = frame, times ``t``; at least three distinct times per row), in closed form:
+    mean time ``t_m``, coefficients ``(n, 3, 2)`` of ``1, τ, τ²`` (``τ = t − t_m``), residual
+    sum of squares and the inverse normal matrix ``(XᵀX)⁻¹`` as its six distinct entries
+    ``(i00, i01, i02, i11, i12, i22)``."""
+    w = (rows >= 0).astype(float)
+    nw = w.sum(axis=1)
+    tm = (w @ t) / nw
+    tc = (t[None, :] - tm[:, None]) * w
+    tc2 = tc * tc
+    s0, s2, s3, s4 = nw, tc2.sum(axis=1), (tc2 * tc).sum(axis=1), (tc2 * tc2).sum(axis=1)
+    p = xy[np.maximum(rows, 0)] * w[..., None]
+    pm = p.sum(axis=1) / nw[:, None]
+    pc = (p - pm[:, None, :]) * w[..., None]
+    b0 = np.zeros_like(pm)  # Σ w (p − p_m) = 0
+    b1 = np.einsum("nm,nmc->nc", tc, pc)
+    b2 = np.einsum("nm,nmc->nc", tc2, pc)
+    det = s0 * (s2 * s4 - s3 * s3) - s2**3
+    i00, i01, i02 = (s2 * s4 - s3 * s3) / det, s2 * s3 / det, -s2 * s2 / det
+    i11, i12, i22 = (s0 * s4 - s2 * s2) / det, -s0 * s3 / det, s0 * s2 / det
+    c0 = i00[:, None] * b0 + i01[:, None] * b1 + i02[:, None] * b2
+    c1 = i01[:, None] * b0 + i11[:, None] * b1 + i12[:, None] * b2
+    c2 = i02[:, None] * b0 + i12[:, None] * b1 + i22[:, None] * b2
+    rss = (pc * pc).sum(axis=(1, 2)) - (c1 * b1 + c2 * b2).sum(axis=1)
+    coef = np.stack([c0 + pm, c1, c2], 1)
+    return tm, coef, np.maximum(rss, 0.0), (i00, i01, i02, i11, i12, i22)
+
+
+def _ca_predict(t: np.ndarray, xy: np.ndarray, rows: np.ndarray, tq: np.ndarray):
+    """Prediction at ``tq`` of each row's constant-acceleration fit and its leverage
+    ``xᵀ(XᵀX)⁻¹x`` (prediction variance ``σ² · (1 + leverage)`` for a new hit)."""
+    tm, coef, _, (i00, i01, i02, i11, i12, i22) = _ca_fit(t, xy, rows)
+    d = tq - tm
+    d2 = d * d
+    pred = coef[:, 0] + coef[:, 1] * d[:, None] + coef[:, 2] * d2[:, None]
+    lev = i00 + 2 * i01 * d + (2 * i02 + i11) * d2 + 2 * i12 * d2 * d + i22 * d2 * d2
+    return pred, lev
 
 def _pad_rows(extra: tuple, m: int) -> tuple:
     """``extra`` (rows, χ², mean position, velocity) with its rows padded on the left to ``m``
