@@ -1,10 +1,13 @@
-"""Browser tests: print the panels' change-to-settled table at the end of the run."""
+"""Browser tests: print the panels' change-to-settled table at the end of the run; build the
+book (niced) while the lessons run in JupyterLab."""
 
 from __future__ import annotations
 
 import math
 import os
 import statistics
+import subprocess
+import sys
 from pathlib import Path
 
 import pytest
@@ -25,6 +28,58 @@ def latency_rows(request) -> list[dict]:
 def run_rows(request) -> list[dict]:
     """Rows ``{notebook, run_s}``: time to run all cells in the browser."""
     return request.config.stash.setdefault(RUNS_KEY, [])
+
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+@pytest.hookimpl(trylast=True)  # after the root conftest's longest-file-first order
+def pytest_collection_modifyitems(session, config, items):
+    """The JupyterLab tests first: the book build (``book_build``) then runs while the lessons
+    do, on the core a finishing lesson leaves idle, instead of on its own before them."""
+    items.sort(key=lambda it: Path(str(it.fspath)).name != "test_jupyterlab.py")
+
+
+class BookBuild:
+    """``sphinx -b html -W --keep-going`` of the stored notebooks into ``out``, in a niced
+    subprocess: ``start()`` (once), ``wait()`` (the process's return code and stderr)."""
+
+    def __init__(self, out: Path):
+        self.out = out
+        self.proc: subprocess.Popen | None = None
+        self.result: tuple[int, str] | None = None
+
+    def start(self) -> None:
+        if self.proc is None:
+            self.proc = subprocess.Popen(
+                [sys.executable, "-m", "sphinx", "-b", "html", "-W", "--keep-going", "-q",
+                 "-c", "notebooks/_book", ".", str(self.out)],
+                cwd=ROOT, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True,
+                preexec_fn=lambda: os.nice(10))
+
+    def wait(self, timeout: float = 600) -> tuple[int, str]:
+        if self.result is None:
+            self.start()
+            try:
+                _, err = self.proc.communicate(timeout=timeout)
+            except subprocess.TimeoutExpired:
+                self.proc.kill()
+                _, err = self.proc.communicate()
+                err += f"\n(killed after {timeout:.0f} s)"
+            self.result = (self.proc.returncode, err)
+        return self.result
+
+    def started(self) -> bool:
+        return self.proc is not None
+
+
+@pytest.fixture(scope="session")
+def book_build(tmp_path_factory) -> BookBuild:
+    build = BookBuild(tmp_path_factory.mktemp("book"))
+    yield build
+    if build.proc is not None and build.proc.poll() is None:
+        build.proc.kill()
+        build.proc.wait()
 
 
 def _seconds(v: float) -> str:

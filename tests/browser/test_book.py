@@ -15,8 +15,6 @@ import json
 import os
 import re
 import shutil
-import subprocess
-import sys
 import threading
 from http.server import SimpleHTTPRequestHandler, ThreadingHTTPServer
 from pathlib import Path
@@ -67,19 +65,17 @@ def _has_math(nb_path: Path) -> bool:
 
 
 @pytest.fixture(scope="module")
-def book(tmp_path_factory) -> Path:
+def book(book_build) -> Path:
+    """The book, built by ``book_build`` (conftest.py: started while the JupyterLab tests run
+    the lessons, or here if they did not run)."""
     given = os.environ.get("EOTRACK_BOOK_DIR")
     if given:
         out = Path(given)
         assert (out / "index.html").is_file(), f"EOTRACK_BOOK_DIR={given} has no index.html"
         return out
-    out = tmp_path_factory.mktemp("book")
-    proc = subprocess.run(
-        [sys.executable, "-m", "sphinx", "-b", "html", "-W", "--keep-going", "-q",
-         "-c", "notebooks/_book", ".", str(out)],
-        cwd=ROOT, capture_output=True, text=True, timeout=600)
-    assert proc.returncode == 0, f"the book build failed or warned:\n{proc.stderr[-4000:]}"
-    return out
+    code, err = book_build.wait()
+    assert code == 0, f"the book build failed or warned:\n{err[-4000:]}"
+    return book_build.out
 
 
 def test_book_has_every_page_and_nothing_remote(book):

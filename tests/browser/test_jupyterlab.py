@@ -272,8 +272,12 @@ def _selected(request) -> list[str]:
 
 
 @pytest.fixture(scope="module")
-def runs(request, browser, lab, run_rows) -> dict[str, Run]:
-    """Open the selected notebooks and run all their cells, PARALLEL tabs at a time."""
+def runs(request, browser, lab, run_rows, book_build) -> dict[str, Run]:
+    """Open the selected notebooks and run all their cells, PARALLEL tabs at a time (and build
+    the book meanwhile if its tests are selected: it is done before any panel is timed)."""
+    if not os.environ.get("EOTRACK_BOOK_DIR") and any(
+            Path(str(it.fspath)).name == "test_book.py" for it in request.session.items):
+        book_build.start()
     # longest first (seconds per notebook from tests/file_durations.json, `make durations`): the
     # two tabs finish together instead of one long notebook running alone at the end
     seconds = json.loads((ROOT / "tests" / "file_durations.json").read_text())["seconds"]
@@ -317,6 +321,10 @@ def runs(request, browser, lab, run_rows) -> dict[str, Run]:
                 done[r.name] = r
     wall = time.perf_counter() - t_all
     print(f"\n[browser] ran {len(done)} notebook(s) in {wall:.0f} s ({PARALLEL} tab(s) at a time)")
+    if book_build.started():  # (its result is checked by test_book.py)
+        t0 = time.perf_counter()
+        book_build.wait()
+        print(f"[browser] waited {time.perf_counter() - t0:.0f} s for the book build")
     run_rows.extend({"notebook": r.name, "run_s": r.seconds} for r in done.values())
     run_rows.append({"notebook": f"(all, {PARALLEL} tabs at a time)", "run_s": wall})
     yield done
