@@ -191,7 +191,7 @@ def test_votes_older_than_m_frames_do_not_count():
 
 
 # ----------------------------------------------------------------------------- verified mode
-@pytest.mark.parametrize("kw", [dict(grow=False), dict(triplet_budget=0.0)])
+@pytest.mark.parametrize("kw", [dict(grow=False), dict(triplet_budget=0.0, grow_min_accelerating=0)])
 def test_chi2_disc_is_the_test(kw):
     """A middle point off the line by just less / more than the χ² radius is kept / refused
     (the causal engine, and the growth engine with the strict three-hit test)."""
@@ -331,7 +331,7 @@ def test_gapped_accelerating_windows_are_opt_in():
     assert found(ModifiedHoughInitiator(v_min=3, v_max=240, accel_gapped=True, grow=False)) == 3
     assert found(ModifiedHoughInitiator(v_min=3, v_max=240, grow=False)) < 3
     # the growth engine (default) grows them across the gap
-    assert found(ModifiedHoughInitiator(v_min=3, v_max=240)) == 3
+    assert found(ModifiedHoughInitiator(v_min=3, v_max=240, grow_min_accelerating=0)) == 3
     with pytest.raises(TypeError, match="accel_gapped"):
         ModifiedHoughInitiator(accel_gapped="yes")
 
@@ -365,7 +365,8 @@ def test_hold_and_confirm_prefers_the_longer_track():
     plain = ModifiedHoughInitiator(v_min=3, v_max=240, grow=False).initiate(frames)
     held = ModifiedHoughInitiator(v_min=3, v_max=240, hold_triplets=True,
                                   grow=False).initiate(frames)
-    grown = _pure_object(ModifiedHoughInitiator(v_min=3, v_max=240).initiate(frames), frames)
+    grown = _pure_object(ModifiedHoughInitiator(v_min=3, v_max=240, grow_min_accelerating=0)
+                         .initiate(frames), frames)
     assert len(grown) == 1 and len(grown[0].hits) == 4
     # without holding, the decoy triplet is confirmed at frame 2 and takes the object's hits
     assert not _pure_object(plain, frames)
@@ -383,8 +384,9 @@ def test_acceleration_aware_triplets_find_a_three_hit_accelerating_object():
     aware = ModifiedHoughInitiator(v_min=3, v_max=240, accel_triplets=True,
                                    grow=False).initiate(frames)
     assert cv == [] and len(aware) == 1 and aware[0].info["n_hits"] == 3
-    strict = ModifiedHoughInitiator(v_min=3, v_max=240, triplet_budget=0.0).initiate(frames)
-    grown = ModifiedHoughInitiator(v_min=3, v_max=240).initiate(frames)
+    strict = ModifiedHoughInitiator(v_min=3, v_max=240, triplet_budget=0.0,
+                                    grow_min_accelerating=0).initiate(frames)
+    grown = ModifiedHoughInitiator(v_min=3, v_max=240, grow_min_accelerating=0).initiate(frames)
     assert strict == [] and len(grown) == 1 and grown[0].info["n_hits"] == 3
     with pytest.raises(ValueError, match="chance_budget"):
         ModifiedHoughInitiator(chance_budget=-1.0)

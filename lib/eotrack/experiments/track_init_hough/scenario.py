@@ -28,6 +28,7 @@ __all__ = [
     "HELDOUT_SEED",
     "HELDOUT_SEED_FIRST",
     "HELDOUT_SEED_SECOND",
+    "HELDOUT_SEED_THIRD",
     "HELDOUT_TARGETS",
     "SLUG",
     "XU_TARGETS",
@@ -544,8 +545,14 @@ HELDOUT_SEED_SECOND = 20261204
 #: on 60 scenes of :class:`HeldOutConfig` at ±3 px/s² must reach recall >= 0.90 with false tracks
 #: per scene <= those of ``LogicInitiator(n=3, m=4, v_min=3, v_max=240, gate_px=10)`` on the same
 #: scenes; the times per frame of ``benchmarks/bench_track_init_hough.py`` section 2 <= 5 ms at 200
-#: and <= 50 ms at 1,000 candidates, measured at load < 2.5). Run once for the final code.
-HELDOUT_SEED = 20261207
+#: and <= 50 ms at 1,000 candidates, measured at load < 2.5). Its single run (code 1fbbc7c: growth always on) met the criterion — recall 0.916, 32.57 false
+#: per scene vs logic 3/4's 44.85 — but that code changed the paper's scenes (the Xu redraws exact
+#: in 73 % instead of 100 %, planted false tracks 2.9x the chance rate), so the growth now runs
+#: only where the data show accelerating objects and the result above is that earlier code's.
+HELDOUT_SEED_THIRD = 20261207
+#: the decisive seed for the code after 06:51 UTC (fixed then, before it was drawn; the same
+#: criterion as for ``HELDOUT_SEED_THIRD``). Run once for the final code.
+HELDOUT_SEED = 20261208
 #: issue 27's targets on :data:`HELDOUT_SEED` (60 scenes of :class:`HeldOutConfig` at ±3 px/s²)
 HELDOUT_TARGETS: dict[str, Any] = {"recall": 0.90, "false <= logic 3/4": True,
                                    "ms per frame at 200": 5.0, "ms per frame at 1000": 50.0}
