@@ -194,6 +194,28 @@ def test_lesson_opens_and_ends_with_navigation(book, nb):
         assert not missing, f"{nb}: navigation line lacks links to {missing}: {line[:200]}"
 
 
+#: lessons stored before the navigation linked the API reference (07:00, issue 23): their next
+#: execution (.ci/execute_notebooks.py) adds the link; then delete the entry
+API_LINK_PENDING = {"03_track_init_hypothesis_testing": "P03", "04_track_init_logic_hough": "P04"}
+
+
+@pytest.mark.parametrize("nb", _lessons(), ids=lambda p: p.stem)
+def test_lesson_navigation_links_the_api_reference(book, nb, request):
+    """Both navigation lines of a lesson end with a link to the API reference, and the link
+    resolves to the reference's index page in the book."""
+    if nb.stem in API_LINK_PENDING:
+        request.applymarker(pytest.mark.xfail(
+            reason=f"stored before the API link; owner {API_LINK_PENDING[nb.stem]} re-executes",
+            strict=False))
+    main = _main(book / nb.with_suffix(".html"))
+    navs = [m.start() for m in re.finditer(r"<p>←", main)]
+    lines = [main[at:main.find("</p>", at)] for at in (navs[0], navs[-1])] if navs else []
+    assert lines and all(re.search(r'href="_book/api/index.html"><span[^>]*>API reference', ln)
+                         for ln in lines), (
+        f"{nb}: a navigation line lacks the API reference link")
+    assert (book / "notebooks" / "_book" / "api" / "index.html").is_file()
+
+
 def test_index_has_a_lab_sheet_per_lesson(book):
     main = _main(book / "notebooks" / "00_index.html")
     at = main.find('id="lab-sheets"')
