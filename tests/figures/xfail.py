@@ -12,6 +12,4 @@ before the kernel recorded the lint's verdict: re-execute it).
 # bars/scatter lists/bands, deuteranopia pairs, 1e−03 labels); requests to the owners in
 # /tmp/coord/requests/fig-<slug>.md (comment: the rules each figure still fails)
 XFAIL: dict[str, str] = {
-    "case:akf_star.plot_frames_schematic": "P05",  # overlapping-text 1
-    "notebook:05_akf_star_tracking": "P05",  # the same schematic as stored (cell 9), 06:42
 }
