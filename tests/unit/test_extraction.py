@@ -214,10 +214,9 @@ def test_default_false_alarm_rate_on_low_count_poisson_noise():
             for lam in (0.3, 3.0))
     assert n <= 4
     frame = rng.poisson(0.3, (1024, 1024)).astype(float)
-    # either guard alone suffices: the Poisson count test, or the exact tail of the quantised
-    # values (counts are integers); with both off the Gaussian threshold floods
-    for cfg in (SkyConfig(local_background=False), SkyConfig(background=BackgroundConfig(quantum=0))):
-        assert len(extract_stars(frame, config=cfg).xy) <= 2
+    # the Poisson count test is the guard (the quantised threshold models Gaussian read noise,
+    # not skewed counts); with it and the quantum off the Gaussian threshold floods
+    assert len(extract_stars(frame, config=SkyConfig(background=BackgroundConfig(quantum=0))).xy) <= 2
     old = len(extract_stars(frame, config=SkyConfig(
         local_background=False, background=BackgroundConfig(quantum=0))).xy)
     assert old > 100
@@ -395,36 +394,46 @@ def test_quantised_noise_floods_without_the_fix():
 
 
 def _camera_frame(seed, gain, n=512, nst=120, quantise=True):
-    """A held-out camera-like frame: Poisson sky of 20 e⁻ and stars (PSF σ 1.4 px), 3 e⁻ read
-    noise, gain e⁻/DN, bias 100 DN, rounded to integer DN (noise σ = 0.67 DN at gain 8)."""
+    """A held-out camera-like frame: Poisson sky of 20 e⁻ and stars (PSF σ 1.4 px, peak SNR
+    uniform in 3-12 against sky and read noise), 3 e⁻ read noise, gain e⁻/DN, bias 100 DN,
+    rounded to integer DN (noise σ = 0.67 DN at gain 8, 0.34 DN at gain 16)."""
     rng = np.random.default_rng(seed)
     xy = rng.uniform(12, n - 12, (nst, 2))
-    flux = 10 ** rng.uniform(1.8, 3.2, nst) * gain
+    snr = rng.uniform(3.0, 12.0, nst)
+    flux = snr * np.sqrt(29.0) * 2 * np.pi * 1.4 ** 2
     e = rng.poisson(render_gaussian_spots((n, n), xy, flux, 1.4) + 20.0) \
         + rng.normal(0, 3.0, (n, n))
     dn = e / gain + 100.0
-    snr = flux / (2 * np.pi * 1.4 ** 2) / np.sqrt(29.0)
     return (np.round(dn).astype(np.uint16) if quantise else dn.astype(np.float32)), xy, snr
 
 
 @pytest.mark.parametrize("gain", [8.0, 16.0])
 def test_quantised_camera_frame_keeps_stars(gain):
-    """Quantisation must not cost stars: on the camera-like frame at gain 8 and 16 e⁻/DN (noise
-    0.67 and 0.34 DN), the integer frame's completeness (peak SNR >= 8, 1 px) is within 0.03 of
-    the same frame before rounding, with no false detection and centroids <= 0.05 px."""
-    comp, false, err = {}, 0, []
+    """Quantisation must cost few stars, also near the threshold: on the camera-like frame at
+    gain 8 and 16 e⁻/DN the integer frame's completeness (1 px) at peak SNR 4-6 is within 0.1
+    of the same frames before rounding (the first version of the quantised threshold, built
+    from the values' own histogram with star wings in it, found 0.19-0.70 there at gain 16:
+    review 28 #1), within 0.05 of it (and >= 0.9) above SNR 8, with no false detection and
+    centroids (SNR 8-12, noise-limited) within 10 % of the unrounded frame's times the noise
+    inflation of rounding, sqrt(1 + Δ²/(12 σ²))."""
+    comp, false, err = {}, 0, {True: [], False: []}
     for q in (True, False):
-        c = []
-        for seed in (21, 22):
+        near, far = [], []
+        for seed in (21, 22, 23):
             img, xy, snr = _camera_frame(seed, gain, quantise=q)
             got = extract_stars(img).xy
             d = np.hypot(*(got[None, :, :] - xy[:, None, :]).transpose(2, 0, 1))
-            c.append(np.mean(d.min(axis=1)[snr >= 8] < 1.0))
+            hit = d.min(axis=1) < 1.0
+            near.append(hit[(snr >= 4) & (snr < 6)])
+            far.append(hit[snr >= 8])
+            err[q].append(d.min(axis=1)[(snr >= 8) & hit])
             if q:
                 false += int(np.sum(d.min(axis=0) > 2.0))
-                err.append(d.min(axis=1)[snr >= 20])
-        comp[q] = float(np.mean(c))
-    assert comp[True] >= 0.95
-    assert comp[True] >= comp[False] - 0.03
+        comp[q] = (float(np.concatenate(near).mean()), float(np.concatenate(far).mean()))
+    assert comp[True][0] >= comp[False][0] - 0.1, comp
+    assert comp[True][1] >= comp[False][1] - 0.05 and comp[True][1] >= 0.9, comp
     assert false == 0
-    assert np.median(np.concatenate(err)) <= 0.05
+    med = {q: float(np.median(np.concatenate(e))) for q, e in err.items()}
+    # noise-limited at SNR 8-12: rounding adds Δ²/12 to the noise variance σ² (σ in DN)
+    inflation = np.sqrt(1 + 1 / (12 * (np.sqrt(29.0) / gain) ** 2))
+    assert med[True] <= 1.1 * inflation * med[False] + 0.01, med
