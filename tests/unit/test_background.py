@@ -115,3 +115,31 @@ def test_quantum_config_checked():
         BackgroundConfig(quantum=-1.0)
     with pytest.raises((TypeError, ValueError), match="quantum"):
         BackgroundConfig(quantum="1")
+
+
+def test_quantisation_step_survives_patched_pixels_and_large_levels():
+    """Cosmetic corrections (review 28 #3) and integer levels far above 2·10⁵ (#4): one
+    off-lattice pixel, 100 hot pixels replaced by a float, a bad column interpolated from 3 or 2
+    neighbours, and integer frames at 3·10⁵ and 3·10⁶ keep Δ = 1."""
+    from eotrack.imaging import quantisation_step
+    rng = np.random.default_rng(6)
+
+    def base(level=100.0):
+        return np.round(level + 0.3 * rng.standard_normal((512, 512)))
+
+    frames = []
+    a = base()
+    a[0, 0] = 100.37
+    frames.append(a)
+    a = base()
+    idx = rng.integers(0, 512, (100, 2))
+    a[idx[:, 0], idx[:, 1]] = 100.001
+    frames.append(a)
+    for cols in ((255, 257, 258), (255, 257)):
+        a = base()
+        a[:, 256] = a[:, list(cols)].mean(axis=1)
+        frames.append(a)
+    frames += [base(3e5), base(3e6)]
+    for i, f in enumerate(frames):
+        assert quantisation_step(f) == pytest.approx(1.0), i
+        assert float(np.median(background_map(f).rms)) > 0.25, i

@@ -382,6 +382,16 @@ def test_false_alarm_rate_on_quantised_noise(sigma):
     assert n <= 8
 
 
+def test_false_alarm_rate_on_a_patched_quantised_frame():
+    """A bad column interpolated from its neighbours and one float pixel at the corner (review
+    28 #3: each switched the frame to the continuous treatment, 1,650 per 10⁶ px)."""
+    rng = np.random.default_rng(9)
+    img = np.round(100 + 0.3 * rng.standard_normal((1024, 1024)))
+    img[:, 500] = img[:, [499, 501, 502]].mean(axis=1)
+    img[0, 0] = 100.37
+    assert len(extract_stars(img).xy) <= 1
+
+
 def test_quantised_noise_floods_without_the_fix():
     """The test above can fail: the same frames treated as continuous (the old behaviour)."""
     from eotrack.imaging import SkyConfig

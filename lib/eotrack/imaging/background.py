@@ -67,34 +67,55 @@ def _truncated_std_factor(c: np.ndarray) -> np.ndarray:
                               / np.maximum(mass, 1e-300), 1e-12))
 
 
+def _lattice(image: Any) -> tuple[float, float]:
+    """(Δ, z0) of the lattice ``z0 + kΔ`` that ≥ 99 % of the sampled values lie on, or (0, 0)."""
+    img = _as_image(image)
+    step = max(1, int(np.sqrt(img.size / 16384)))
+    v = img[::step, ::step].ravel().astype(np.float64)
+    u, cnt = np.unique(v, return_counts=True)
+    if len(u) < 2:
+        return 0.0, 0.0
+    # float32 holds the values; a step must span several of its units at the largest value
+    ulp = float(np.spacing(np.float32(np.abs(u).max())))
+    tol = 2.0 * ulp
+    pop = u[cnt >= max(3, int(2e-3 * len(v)))]          # the levels the noise populates
+    if len(pop) < 2:
+        return 0.0, 0.0
+    d0 = float(np.diff(pop).min())
+    if d0 < 4.0 * ulp:                                   # the float32 grid itself
+        return 0.0, 0.0
+    z0 = float(u[np.argmax(cnt)])                        # the most frequent value
+    best = (0.0, 0.0)
+    for mult in range(1, 13):                            # the coarsest lattice that fits
+        delta = mult * d0
+        r = (v - z0) / delta
+        on = np.abs(r - np.rint(r)) * delta <= 0.01 * delta + tol
+        if on.mean() >= 0.99:
+            k = np.rint(r[on])
+            dk = np.diff(np.unique(k))
+            if len(dk) and dk.min() >= 1:
+                best = (delta, z0)
+    return best
+
+
 def quantisation_step(image: Any) -> float:
-    """Step Δ of the lattice ``z0 + kΔ`` that every value of ``image`` lies on, or 0.0.
+    """Step Δ of the lattice ``z0 + kΔ`` that the values of ``image`` lie on, or 0.0.
 
     Integer ADU (Δ = 1), integers times a gain plus an offset stored as floats (Δ = gain) and
-    8-bit frames are quantised; data with continuous values (or a lattice finer than ten times
-    the float32 resolution of the values, which no noise level resolves) give 0.0. Checked on up
-    to ~16,000 pixels (every k-th row and column): all differences between the distinct values
-    must be integer multiples of the smallest one, to 1 % of it plus the float32 rounding.
+    8-bit frames are quantised (integers up to ~3·10⁶ and beyond as long as the step spans 4
+    float32 units of the largest value); data with continuous values give 0.0. Checked on up to
+    ~16,000 pixels (every k-th row and column): the step is found from the values the noise
+    populates (each at least 0.2 % of the sample) and is the coarsest multiple of their
+    smallest spacing that ≥ 99 % of ALL sampled values lie on (to 1 % of Δ plus the float32
+    rounding) — so a few patched pixels (a bad column interpolated, a hot pixel replaced by a
+    float) do not switch a quantised frame to the continuous treatment.
 
     Raises
     ------
     TypeError, ValueError
         If the image is not a finite 2-D numeric array of at least 3×3 pixels.
     """
-    img = _as_image(image)
-    step = max(1, int(np.sqrt(img.size / 16384)))
-    u = np.unique(img[::step, ::step].astype(np.float64))
-    if len(u) < 2:
-        return 0.0
-    d = np.diff(u)
-    tol = 4.0 * float(np.finfo(np.float32).eps) * float(np.abs(u).max())
-    delta = float(d.min())
-    if delta <= 10.0 * tol:
-        return 0.0
-    r = np.rint(d / delta)
-    if np.any(np.abs(d - r * delta) > 0.01 * delta + tol):
-        return 0.0
-    return float(np.sum(d) / np.sum(r))          # the mean step (less rounding than the min)
+    return _lattice(image)[0]
 
 
 @dataclass(frozen=True)

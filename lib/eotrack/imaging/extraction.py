@@ -539,7 +539,9 @@ def _quantised_noise(img: np.ndarray, bg: Any, cfg: BackgroundConfig, thresh: fl
     cx = np.minimum(np.arange(nx) * m + m // 2, W - 1)
     b = bg.back[cy[:, None], cx[None, :]].astype(np.float64).ravel()
     r = bg.rms[cy[:, None], cx[None, :]].astype(np.float64).ravel() / delta
-    z0 = float(img.flat[0])                                   # a lattice point
+    step = max(1, int(np.sqrt(img.size / 16384)))
+    u, cnt = np.unique(img[::step, ::step], return_counts=True)
+    z0 = float(u[np.argmax(cnt)])                 # the most frequent value: a lattice point
     ref = z0 + delta * np.rint((b - z0) / delta)              # lattice point nearest the level
     mu = (b - ref) / delta                                    # in steps, |mu| <= 1/2
     ts, tf, tm, tsd = _rounded_gaussian_table()
