@@ -786,7 +786,9 @@ display(Markdown(
 # **Centroid accuracy.** Eqs. (28)–(29) weight only the pixels above the local threshold, so
 # the PSF wings are cut and the centroid is pulled towards the brightest pixel ("pixel
 # locking"). Growing each region by two pixels (the library default) removes most of the bias,
-# as does the sky extractor's windowed centroid (nominal sequence, 60 frames):
+# as does the sky extractor's windowed centroid (nominal sequence, 60 frames; the stored table
+# predates the sky extractor's quantised-frame threshold, which is active on these 8-bit frames
+# — `make repro` re-computes it):
 
 # %%
 centroids = study.tables["centroid_bias"]

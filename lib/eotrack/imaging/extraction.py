@@ -217,9 +217,12 @@ class SkyConfig:
     noise (so stars enter only through the clipped statistics; a first version built from the
     values' own histogram counted star wings as noise and lost most stars at peak SNR 3–6).
     On pure noise the floor is ≈ the Gaussian threshold for σ ≥ 0.5 Δ and 1.3–2.5× it at
-    σ = 0.2–0.3 Δ on a step. Measured with the default (issue 28): 1,600–4,200 false
-    detections per 10⁶ px before, 0–0.03 per 10⁶ px after, over σ = 0.2–4 Δ, eight sub-step
-    offsets, four gain/offset/dtype combinations (34 Mpx per σ). Not covered: frames whose
+    σ = 0.2–0.3 Δ on a step. Measured with the default (issue 28; ``bench_quantised`` and
+    ``bench_quantised_scan`` of ``benchmarks/bench_extraction.py``, recorded in
+    ``papers_repro/akf_star/bench_extraction.txt``): 1,600–4,200 false detections per 10⁶ px
+    before, ≲ 0.03 after, over σ = 0.2–4 Δ, eight sub-step offsets and four
+    gain/offset/dtype combinations; on frames with stars see ``bench_quantised_stars``
+    there. A few patched pixels (an interpolated column) keep the lattice. Not covered: frames whose
     lattice is broken per pixel (bias-subtracted with a float master bias, flat-fielded),
     correlated noise and non-Gaussian discrete data (low-count Poisson frames have the count
     test above) — measure the rate on a blank frame of your own data.

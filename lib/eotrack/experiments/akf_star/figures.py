@@ -181,21 +181,21 @@ def plot_frames_schematic(heading_deg: float = 30.0, pitch_deg: float = 12.0,
     R_nc = camera_from_level(psi, th, ph, np.radians(cam_azimuth_deg),
                              np.radians(cam_elevation_deg))
     o = np.zeros(3)
-    for vec, lab, c, ls in [((1, 0, 0), "E (X)", "k", ":"), ((0, 1, 0), "N (Y)", "k", ":"),
-                            ((0, 0, 1), "U (Z)", "k", ":")]:
+    for vec, lab, c, ls in [((1, 0, 0), "E ($X$)", "k", ":"), ((0, 1, 0), "N ($Y$)", "k", ":"),
+                            ((0, 0, 1), "U ($Z$)", "k", ":")]:
         ax.plot(*np.c_[o, vec], color=c, ls=ls, lw=1)
         ax.text(*(1.08 * np.asarray(vec)), lab, fontsize=8)
     # the bow points between north and the optical axis: its label sits along the arrow, to
     # the side, clear of the two tip labels
-    for i, (lab, at, ha) in enumerate((("starboard X_B", 1.1, "left"), ("bow Y_B", 0.75, "right"),
-                                       ("deck-up Z_B", 1.1, "left"))):
+    for i, (lab, at, ha) in enumerate((("starboard $X_B$", 1.1, "left"), ("bow $Y_B$", 0.75, "right"),
+                                       ("deck-up $Z_B$", 1.1, "left"))):
         v = 0.85 * R_nb[i]
         ax.plot(*np.c_[o, v], color="tab:blue", lw=2)
         ax.text(*(at * v), lab, color="tab:blue", fontsize=8, ha=ha)
     bore = 1.2 * R_nc[1]
     ax.plot(*np.c_[o, bore], color="tab:red", lw=2.5)
-    ax.text(*(1.05 * bore), "optical axis Y′", color="tab:red", fontsize=8, ha="left")
-    for i, lab in ((0, "X′"), (2, "Z′")):
+    ax.text(*(1.05 * bore), "optical axis $Y'$", color="tab:red", fontsize=8, ha="left")
+    for i, lab in ((0, "$X'$"), (2, "$Z'$")):
         v = 0.45 * R_nc[i]
         ax.plot(*np.c_[bore * 0.6, bore * 0.6 + v], color="tab:red", lw=1)
         ax.text(*(bore * 0.6 + 1.1 * v), lab, color="tab:red", fontsize=8)
