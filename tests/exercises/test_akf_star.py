@@ -14,7 +14,7 @@ SLUG = "akf_star"
 
 def _qa():
     # independent of the library: integrate d Var/dt = -2α Var + σ_w² numerically
-    alpha, sw, dt = 0.7, 4.0, 0.2
+    alpha, sw, dt = 1.5, 3.0, 0.5          # re-posed off the notebook's own setting
     v, h = 0.0, dt / 20000
     for _ in range(20000):
         v += h * (-2 * alpha * v + sw * sw)
@@ -50,7 +50,7 @@ RIGHT = {
 }
 
 WRONG = {
-    "akf_star.1": lambda: 4.0 ** 2 * 0.2,                  # white-noise variance σ_w² ΔT... no decay
+    "akf_star.1": lambda: 3.0 ** 2 * 0.5,                  # white-noise variance σ_w² ΔT... no decay
     "akf_star.2": lambda: (lambda k, b: (1 - b) / (1 - b ** k) if k else 1.0),  # printed form
     "akf_star.3": lambda: 0.05,                            # "a few per cent"
     "akf_star.4": lambda: _explore() * 1.5 + 1.0,
@@ -141,3 +141,10 @@ def test_exercise6_labelled_wrong_options_fail(written):
 def test_exercise6_not_an_option_raises(written):
     with pytest.raises(ValueError, match="expected one of"):
         check("akf_star.6", written)
+
+
+def test_ex1_value_printed_in_the_notebook_is_wrong():
+    """Exercise 1 is re-posed off the notebook's own eq. (34) check (α 0.7, σ_w 4, ΔT 0.2, whose
+    q_a the notebook prints): copying that number must fail (review 28 round 3 #10)."""
+    from eotrack.tracking.kalman import singer_acceleration_variance
+    assert not check("akf_star.1", singer_acceleration_variance(0.2, 0.7, 4.0))

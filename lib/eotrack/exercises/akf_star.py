@@ -13,7 +13,7 @@ __all__: list[str] = []
 def _qa() -> float:
     from eotrack.tracking.kalman import singer_acceleration_variance
 
-    return singer_acceleration_variance(0.2, 0.7, 4.0)
+    return singer_acceleration_variance(0.5, 1.5, 3.0)
 
 
 def _sage_husa_d(k: int, b: float) -> float:
@@ -51,7 +51,7 @@ def _table1_reduction() -> float:
 register("akf_star.1", NumericAnswer(
     "Derivation (eq. 34). The Singer acceleration obeys da = −α a dt + σ_w dW. Starting from "
     "a = 0, derive the variance it reaches after one frame ΔT, then evaluate it for "
-    "α = 0.7 s⁻¹, σ_w = 4 px s^-2.5, ΔT = 0.2 s (px²/s⁴).",
+    "α = 1.5 s⁻¹, σ_w = 3 px s^-2.5, ΔT = 0.5 s (px²/s⁴).",
     expected=_qa, rtol=1e-3,
     hint="solve d(Var a)/dt = −2α Var a + σ_w² with Var a(0) = 0 and evaluate at ΔT"))
 
