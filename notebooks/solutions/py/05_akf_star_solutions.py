@@ -33,7 +33,7 @@ setup_notebook()
 # eq. (34).
 
 # %%
-alpha, sigma_w, dt = 0.7, 4.0, 0.2
+alpha, sigma_w, dt = 1.5, 3.0, 0.5
 answer = sigma_w ** 2 / (2 * alpha) * (1 - np.exp(-2 * alpha * dt))
 assert np.isclose(answer, singer_acceleration_variance(dt, alpha, sigma_w))
 assert check("akf_star.1", answer)
