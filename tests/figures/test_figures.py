@@ -13,10 +13,11 @@ from __future__ import annotations
 
 import hashlib
 import json
+import warnings
 from pathlib import Path
 
 import pytest
-from eotrack.plotting import lint_figure
+from eotrack.plotting import LINT_VERSION, lint_figure
 
 from .cache import ROOT
 from .cases import all_cases
@@ -74,6 +75,13 @@ def sidecar_problems(side: Path, slug: str = "<slug>") -> list[tuple[str, str]]:
     stem = side.name.removesuffix(".lint.json")
     rec = json.loads(side.read_text(encoding="utf-8"))
     png = side.with_name(f"{stem}.png")
+    missing = [k for k in ("png", "sha256", "problems") if k not in rec]
+    if missing or rec["png"] != png.name:
+        return [("bad-sidecar", f"{side.name} lacks {missing} or names another PNG "
+                 f"({rec.get('png')!r}): regenerate the report (python -m eotrack.repro {slug})")]
+    if rec.get("lint") != LINT_VERSION:  # not yet a failure: 26 sidecars predate the version
+        warnings.warn(f"{side.name}: verdict of another lint version ({rec.get('lint')}) than "
+                      f"{LINT_VERSION}; regenerate the report", stacklevel=1)
     sha = hashlib.sha256(png.read_bytes()).hexdigest()
     if rec.get("sha256") != sha:
         return [("stale-sidecar", f"{side.name} was written for another {png.name} (sha256 "

@@ -358,3 +358,13 @@ def test_computer_notation_tick_labels():
     ax.yaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:.1e}"))
     label_axes(ax, x="x", y="y", title="linear")
     assert "log-labels" in _rules(fig)  # '1.0e-03' on a linear axis too
+
+
+def test_red_green_scatter_pairs():
+    """Red vs green scatter markers of the same shape (edge in the face colour) look alike."""
+    fig, ax = plt.subplots()
+    ax.scatter([0, 1], [0, 1], color="tab:green", label="correct")
+    ax.scatter([0, 1], [1, 0], color="tab:red", label="false")
+    label_axes(ax, x="x", y="y", title="pairs")
+    legend_outside(ax)
+    assert "same-style" in _rules(fig)

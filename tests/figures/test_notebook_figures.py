@@ -14,10 +14,11 @@ the lint was recorded), fails. Fix the figure, re-execute the notebook
 from __future__ import annotations
 
 import json
+import warnings
 from pathlib import Path
 
 import pytest
-from eotrack.plotting import LINT_MIMETYPE
+from eotrack.plotting import LINT_MIMETYPE, LINT_VERSION
 
 from .cache import ROOT
 from .xfail import XFAIL
@@ -76,6 +77,12 @@ def test_notebook_figures(path, request, lint_rows):
     if key in XFAIL:
         request.applymarker(pytest.mark.xfail(reason=f"not fixed yet, owner {XFAIL[key]}",
                                               strict=False))
+    stale = [k for k, (_, _, rec) in enumerate(figure_records(path), 1)
+             if rec is not None and rec.get("lint") != LINT_VERSION]
+    if stale:  # not yet a failure: most notebooks were stored before the version was recorded
+        warnings.warn(f"{key}: {len(stale)} of {len(rows)} stored figures carry the verdict of "
+                      f"another lint version than {LINT_VERSION} (re-execute the notebook)",
+                      stacklevel=1)
     bad = [(fid, p) for fid, _, probs in rows for p in probs]
     assert not bad, (f"{key} (owner {owner}): {len(bad)} problems in "
                      f"{len({f for f, _ in bad})} of {len(rows)} figures\n"
@@ -94,7 +101,9 @@ def test_lint_record_of_a_figure():
     rules = {r for r, _ in figure_lint_record(fig)["problems"]}
     assert {"axis-label", "title"} <= rules
     ax.set(xlabel="time (s)", ylabel="height (m)", title="a line")
-    assert figure_lint_record(fig) == {"problems": []}
+    from eotrack.plotting import LINT_VERSION
+
+    assert figure_lint_record(fig) == {"problems": [], "lint": LINT_VERSION}
     rec = figure_lint_record("not a figure")
     assert rec["problems"][0][0] == "lint-error" and "TypeError" in rec["problems"][0][1]
 

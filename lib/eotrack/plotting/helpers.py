@@ -303,15 +303,16 @@ LINT_MIMETYPE = "application/vnd.eotrack.figure-lint+json"
 
 def figure_lint_record(fig: Any) -> dict:
     """The lint's verdict on ``fig`` as stored with a notebook's figure output:
-    ``{"problems": [[rule, message], ...]}`` (empty list: the figure passes); a lint that
+    ``{"problems": [[rule, message], ...], "lint": LINT_VERSION}`` (empty list: the figure
+    passes; ``lint`` names the rules' version); a lint that
     itself fails is recorded as the problem ``"lint-error"``."""
-    from .lint import lint_figure
+    from .lint import LINT_VERSION, lint_figure
 
     try:
         problems = [[p.rule, p.message] for p in lint_figure(fig)]
     except Exception as exc:  # the record must not break the notebook's output
         problems = [["lint-error", f"{type(exc).__name__}: {exc}"]]
-    return {"problems": problems}
+    return {"problems": problems, "lint": LINT_VERSION}
 
 
 def register_figure_descriptions() -> bool:

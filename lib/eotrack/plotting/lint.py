@@ -25,7 +25,19 @@ from matplotlib.text import Text
 
 from .style import BOOK_WIDTH_IN, MIN_FONT_PT
 
-__all__ = ["RULES", "FigureProblem", "effective_font_scale", "lint_figure"]
+__all__ = ["LINT_VERSION", "RULES", "FigureProblem", "effective_font_scale", "lint_figure"]
+
+def _lint_version() -> str:
+    """SHA-256 (12 hex digits) of this module's source: a stored verdict names the lint that
+    wrote it, so a verdict of an older lint can be told from a current one."""
+    import hashlib
+    from pathlib import Path
+
+    return hashlib.sha256(Path(__file__).read_bytes()).hexdigest()[:12]
+
+
+#: The version of the lint's rules (hash of ``lint.py``), stored with every verdict.
+LINT_VERSION = _lint_version()
 
 #: The lint's rules, in the order they are checked.
 RULES = ("overlapping-text", "clipped-text", "legend-covers-data", "axis-label", "small-text", "title",
@@ -309,7 +321,10 @@ def _style_key(h: Any) -> tuple | None:
         fc = h.get_facecolor()
         ec = h.get_edgecolor()
         path = h.get_paths()[0].vertices.round(2).tobytes() if h.get_paths() else b""
-        return ("scatter", c(fc[0]) if len(fc) else None, c(ec[0]) if len(ec) else None, path)
+        fcol = c(fc[0]) if len(fc) else None
+        ecol = c(ec[0]) if len(ec) else None
+        # an edge in the face colour (scatter(color=…)) is part of the colour, not the style
+        return ("scatter", fcol, "face" if ecol == fcol else ecol, path)
     if isinstance(h, BarContainer):
         h = h.patches[0] if h.patches else None
         if h is None:
