@@ -300,12 +300,15 @@ def plot_prediction(prediction: pd.DataFrame, *, ax: plt.Axes | None = None) -> 
         parts = o.split("+", 1) if "+" in o[5:] else o.split("-", 1)
         lab = o if len(o) <= 6 or len(parts) < 2 else \
             parts[0] + "\n" + o[len(parts[0]):]
-        return f"{st.split()[0]}\n{lab}"
+        return f"{st.split()[-1]}\n{lab}"   # the station by its state code (NM, HI)
 
     ax.set_xticks(x, [tick(s, o) for s, o in tab.index], fontsize=9)
     ax.set_ylim(0, None)
     ax.grid(axis="x", visible=False)
-    label_axes(ax, x="station and object", y="RMS error in umbra", yunit="″", title=title)
+    codes = ", ".join(f"{s.split()[-1]} = {' '.join(s.split()[:-1])}"
+                      for s in dict.fromkeys(st for st, _ in tab.index))
+    label_axes(ax, x=f"station ({codes}) and object", y="RMS error in umbra", yunit="″",
+               title=title)
     legend_outside(ax, where="right")
     return ax
 
