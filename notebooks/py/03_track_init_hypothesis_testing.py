@@ -96,7 +96,7 @@ SEED = 2008  # for the by-hand steps of section 4 (the reproduction uses the lib
 pd.Series(N.as_dict(), name="trials").to_frame()
 
 # %%
-versions()
+pd.Series(versions(), name="version").to_frame()
 
 # %%
 P = E.paper_settings()  # the paper's settings, read from claims.toml
@@ -367,7 +367,8 @@ print(f"k = 0 of {N.fig1_windows:,}: 99.9 % Wilson interval [{float(lo):g}, {flo
 
 # %% [markdown]
 # The last line is why a Monte Carlo cannot check Fig. 1's far tail: any value below that bound
-# "agrees" with zero hits. We compare only $S \le 12$.
+# "agrees" with zero hits. The criterion compares $S \le 12$; points below the bound agree
+# trivially, so only the first few $S$ of each curve are informative.
 #
 # ## 5 · Reproduction
 #
@@ -556,7 +557,7 @@ pft.T
 # The sweep re-runs the experiment's sequences changing only the curved target's SNR; its
 # SNR-2 row *is* the experiment. Left: the paper's SNR, the first sequence (simulated here,
 # asserted equal to the stored one); right, **exploratory** (chosen after seeing the sweep): the
-# smallest SNR recovered in at least half the runs.
+# smallest SNR recovered in at least half the runs (point estimate), its first recovered run.
 
 # %%
 snr_bright = E.snr_for_recovery(sweep)
@@ -595,12 +596,18 @@ display(Markdown(
 # %% [markdown]
 # ## 6 · Scorecard
 #
-# Each claim evaluated on the runs above by the same functions `make repro` uses.
+# Each claim evaluated on the runs above by the same functions `make repro` uses; the
+# criteria (and their history) are in `claims.toml` and the REPORT.
 
 # %%
 claims = [E.evaluate_fig1(f1), E.evaluate_fig2(f2, min_hits=TH),
           E.evaluate_experiment(ex, sweep, st)]
-scorecard(claims)[["claim", "kind", "central", "ours", "status", "note"]]
+card = scorecard(claims)
+split = card["note"].str.split("Exploratory reading ", n=1, expand=True).reindex(columns=[0, 1])
+card["reason"], card["exploratory (not the status)"] = split[0], split[1].fillna("")
+with pd.option_context("display.max_colwidth", None):  # full text: nothing cut off
+    display(card[["claim", "kind", "central", "status", "reason",
+                  "exploratory (not the status)"]].set_index("claim"))
 
 # %%
 # NBVAL_CHECK_OUTPUT
@@ -651,7 +658,7 @@ display(Markdown("\n".join([
     f"SNR {st.main_snr:.2f} solved from the paper's $P_D$); the temporal test's details (4.7).",
     f"* **Fig. 7 ({claims[2].status})**: the curved target is recovered in {m_ex['curved_ok']} "
     f"of {m_ex['n_runs']} runs (95 % interval [{lo:.0%}, {hi:.0%}]); from SNR "
-    f"{snr_bright:g} in at least half (exploratory).",
+    f"{snr_bright:g} in at least half (point estimate, exploratory).",
 ])))
 
 # %% [markdown]
@@ -716,25 +723,6 @@ display(Markdown(
     "CFAR on clutter) is not separated."))
 
 # %% [markdown]
-# **The curved target's per-frame $P_{DA}$** against two predictions from measured inputs:
-# (i) the per-pixel count of exercise 1 (each core pixel its own $P_D$, over sub-pixel phases);
-# (ii) the same plus the *measured* count distribution of background windows (an upper bound:
-# $W_S$ pixels rather than $W_S-T_S$):
-
-# %%
-pred = E.curved_pda_predictions(ex, st)  # (i) and (ii), mean over 10 x 10 sub-pixel phases
-meas_pda = float(tab["P_DA measured"].iloc[1])
-if not QUICK:  # full counts: (ii) is the closer prediction
-    assert abs(meas_pda - pred["with measured background"]) < abs(meas_pda - pred["per-pixel"])
-closed = (pred["with measured background"] - pred["per-pixel"]) / (meas_pda - pred["per-pixel"])
-print(f"(ii) closes {closed:.0%} of the gap (i) leaves: correlated clutter residue near the "
-      "target, which Bin(W_S - T_S, P_F) misses")
-pd.Series({"measured": meas_pda, "exact count (binomial, one P_D)": float(tab["P_DA exact"].iloc[1]),
-           "(i) per-pixel, sub-pixel phases": pred["per-pixel"],
-           "(ii) (i) + measured background counts": pred["with measured background"]},
-          name="curved target, per-frame P_DA")
-
-# %% [markdown]
 # **A real star field as background** (astropy's SkyView image of M13 [8]): static stars pass
 # every test; a per-pixel temporal median subtracted before CFAR removes them (gate 9 × 9 for
 # a target moving 5 px per frame):
@@ -765,15 +753,13 @@ pd.DataFrame(res).T
 ini_mc = E.initiator_monte_carlo(snr=P["fig2_snr"], p_f=E.INITIATOR_P_F, gate=P["fig2_gate"],
                                  frames=T, min_hits=TH, n=N.initiator_sequences, runner=runner)
 ax = E.plot_initiator_vs_formulas(ini_mc)
-lo_pf, hi_pf = ini_mc.iloc[0], ini_mc.iloc[-1]  # the text below, checked
-assert abs(lo_pf["track with >= T_h target points"] - lo_pf["P_DT eq.13"]) < 0.03
+hi_pf = ini_mc.iloc[-1]  # the text below, checked at the largest P_F
 assert hi_pf["track with >= T_h target points"] < hi_pf["P_DT eq.13"] - 0.1
 ini_mc.set_index("P_F")
 
 # %% [markdown]
-# With few false alarms the rates follow the formulas; with many, false alarms lure the gate
-# away and *true* tracks fall below $P_{DT}$: eq. (13) bounds nearest-neighbour association from
-# above. **In practice**: choose $S$, $T_h$ by formula, then measure — clutter is correlated and
+# With many false alarms, they lure the gate away and *true* tracks fall below $P_{DT}$:
+# eq. (13) bounds nearest-neighbour association from above. **In practice**: choose $S$, $T_h$ by formula, then measure — clutter is correlated and
 # a gate follows false points.
 #
 # ## 10 · Key points
@@ -818,7 +804,7 @@ if answer is not None:
 
 # %% [markdown]
 # **Exercise 3 (exploration, with the panel of section 7).** Set log10 $P_F$ = −2.5, window
-# 5 × 5, $T_S$ = 4. Raising the SNR in steps of 0.1, what is the smallest SNR at which some $S$
+# 5 × 5, $T_S$ = 6. Raising the SNR in steps of 0.1, what is the smallest SNR at which some $S$
 # gives $P_{FA} \le 10^{-4}$ and an **exact** $P_{DA} \ge 0.9$? Compare with what eq. (7)
 # suggests.
 
@@ -850,9 +836,8 @@ if answer is not None:
 # %% [markdown]
 # ## 12 · Closing note: review
 #
-# Issue 26's expert review found 20 defects, a second independent review 13; all are fixed
-# except the prose length, now under ~3,000 words. li_fig1 keeps its pre-stated criterion
-# (*partial*); the refutation written after the results is exploratory (section 5).
+# This notebook was read by independent reviewers against `../shared/REVIEW.md`; their findings
+# and the answers are recorded with issue 26.
 
 # %% [markdown]
 # ## 13 · References

@@ -13,6 +13,8 @@ from scipy.optimize import brentq
 from scipy.stats import binom
 
 SLUG = "track_init_ht"
+#: exercise 3's target pixels (re-posed from Fig. 1's T_S = 4, whose needed P_D the notebook prints)
+EX3_TS = 6
 
 
 def _right_1(p_d_pixels, p_f, w_s, s):
@@ -47,7 +49,7 @@ def _right_3_exact():
         if binom.sf(s - 1, 25, p_f) > 1e-4:
             continue
         def f(snr, s=s):
-            return hyp.area_detection_exact(hyp.snr_to_pd(snr, p_f), p_f, 5, 4, s) - 0.9
+            return hyp.area_detection_exact(hyp.snr_to_pd(snr, p_f), p_f, 5, EX3_TS, s) - 0.9
         if f(30.0) > 0:
             best = min(best, brentq(f, 0, 30))
     return best
@@ -88,7 +90,8 @@ WRONG = {
     "track_init_ht.3": [round(math.ceil(_right_3_exact() * 10) / 10 - 0.1, 1),
                         round(math.ceil(_right_3_exact() * 10) / 10 + 0.1, 1), 2.0,
                         # off-grid values just below the exact threshold: P_DA < 0.9 there
-                        round(_right_3_exact() - 0.008, 3), round(_right_3_exact() - 0.003, 3)],
+                        round(_right_3_exact() - 0.008, 3), round(_right_3_exact() - 0.003, 3),
+                        3.8],  # Fig. 1's T_S = 4 (its needed P_D is printed in the notebook)
     "track_init_ht.4": [_pda_ex4(9, 6, exact=False),  # eq. (7)
                         _pda_ex4(4, 6),  # Fig. 1's T_S = 4
                         _pda_ex4(9, 7),  # D > S
@@ -100,7 +103,7 @@ WRONG = {
 BAD = {
     "track_init_ht.1": ("not a function", TypeError),
     "track_init_ht.2": ("eight", TypeError),
-    "track_init_ht.3": ([3.8, 3.9], TypeError),
+    "track_init_ht.3": ([3.2, 3.3], TypeError),
     "track_init_ht.4": (float("nan"), ValueError),
     "track_init_ht.5": (None, TypeError),
 }
@@ -125,19 +128,24 @@ def test_wrong_answer_fails(eid, k):
 
 
 def test_exercise_3_neighbours_of_the_threshold():
-    """3.7 fails the requirement at every admissible S; the grid answer meets it."""
+    """The grid value below the answer fails the requirement at every admissible S; the grid
+    answer meets it; off-grid values just below the exact threshold fail (the review's 3.7 / 3.77
+    finding at T_S = 4, re-checked at the re-posed T_S = 6), and T_S = 4's answer is wrong."""
     p_f = 10 ** -2.5
     s_ok = [s for s in range(1, 26) if binom.sf(s - 1, 25, p_f) <= 1e-4]
-    best = lambda snr: max(hyp.area_detection_exact(hyp.snr_to_pd(snr, p_f), p_f, 5, 4, s)  # noqa: E731
-                           for s in s_ok)
-    grid = math.ceil(_right_3_exact() * 10) / 10
+    best = lambda snr, ts=EX3_TS: max(  # noqa: E731
+        hyp.area_detection_exact(hyp.snr_to_pd(snr, p_f), p_f, 5, ts, s) for s in s_ok)
+    exact = _right_3_exact()
+    grid = math.ceil(exact * 10) / 10
+    assert 3.1 < exact < 3.2 and grid == 3.2
     assert best(grid) >= 0.9 > best(round(grid - 0.1, 1))
-    assert not check("track_init_ht.3", 3.7)
+    assert not check("track_init_ht.3", round(grid - 0.1, 1))
     assert check("track_init_ht.3", grid)
-    # the review's off-grid case: 3.77 is within 0.04 of 3.8 but its best P_DA is below 0.9
-    assert best(3.77) < 0.9 and not check("track_init_ht.3", 3.77)
-    assert not check("track_init_ht.3", 3.775)
-    assert best(_right_3_exact() + 1e-6) >= 0.9
+    for off in (exact - 0.03, exact - 0.003):  # within 0.1 of the grid answer, P_DA < 0.9
+        assert best(off) < 0.9 and not check("track_init_ht.3", round(off, 3))
+    assert best(exact + 1e-6) >= 0.9
+    assert best(3.8, ts=4) >= 0.9 > best(3.7, ts=4)  # the old setting's answer ...
+    assert not check("track_init_ht.3", 3.8)  # ... is wrong here (T_S = 4 instead of 6)
 
 
 @pytest.mark.parametrize("eid", sorted(BAD))

@@ -342,3 +342,17 @@ def test_stored_study_round_trip_equals_the_live_run(tmp_path):
         exp.write_stored(path, st, {9.0: ex["runs"]}, n_runs=2, seed=7)
     with pytest.raises(ValueError, match="runs"):
         exp.pool_runs([], st)
+
+
+def test_committed_sequence_study_is_current():
+    """The stored study notebook 03 reads was written by this code for these settings (else the
+    notebook silently falls back to the slow live run): re-run `python -m eotrack.repro
+    track_init_ht` after editing any file of stored._CODE."""
+    from eotrack.repro import papers_repro_dir
+
+    st = exp.SequenceSettings.from_paper()
+    n = exp.trial_counts()
+    by_snr = exp.read_stored(papers_repro_dir() / "track_init_ht" / exp.STORED_FILE, st,
+                             n_runs=n.sequences, seed=exp.SEEDS["sequences"],
+                             snrs=[st.curved_snr + d for d in exp.SWEEP_SNR])
+    assert all(len(v) == n.sequences for v in by_snr.values())

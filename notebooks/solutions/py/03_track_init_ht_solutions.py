@@ -86,7 +86,7 @@ display(Markdown(
 
 # %%
 p_f3 = 10 ** -2.5
-w3, ts3 = P["fig1_window"], P["fig1_target_pixels"]
+w3, ts3 = P["fig1_window"], 6  # a 6-pixel target (not Fig. 1's T_S = 4)
 s_min = hyp.clustering_threshold(p_f3, w3, 1e-4)
 
 

@@ -76,9 +76,12 @@ def plot_schematic(*, p_f: float = 0.2, window: int = 5, target_pixels: int = 4,
     # temporal test: a target drifting right, detected in most frames
     hits = rng.random(frames) < 0.75
     hits[0] = True
-    x = np.arange(frames) * 1.6
+    x = np.arange(frames) * (gate + 0.8)  # gates apart, each drawn pixel by pixel (M pixels)
     for f in range(frames):
-        a2.add_patch(Rectangle((x[f] - gate / 2, -gate / 2), gate, gate, fc="0.88", ec="0.5"))
+        for i in range(gate):
+            for j in range(gate):
+                a2.add_patch(Rectangle((x[f] - gate / 2 + j, -gate / 2 + i), 1, 1, fc="0.88",
+                                       ec="0.5", lw=0.6))
         if hits[f]:
             a2.plot(x[f] + rng.uniform(-0.3, 0.3), rng.uniform(-0.3, 0.3), "ko", ms=6)
         a2.text(x[f], -gate / 2 - 0.5, f"k={f + 1}", ha="center", fontsize=9)
