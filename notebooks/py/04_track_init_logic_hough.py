@@ -730,16 +730,16 @@ bare.round(3)
 #
 # 8 irregular frames (0.6–1.6 s apart), P_D 0.8, a burst of 150 false alarms in one frame,
 # objects accelerating by up to ±3 px/s². The targets (`TH.HELDOUT_TARGETS`: recall ≥ 0.90, no
-# more false tracks than logic 3/4, ≤ 5 / 50 ms per frame at 200 / 1,000 candidates) were fixed
-# before any decisive seed was drawn. The first decisive seed (`TH.HELDOUT_SEED_FIRST`) was
-# used once; the density cap was changed after it, so the current code's decisive seed is
-# `TH.HELDOUT_SEED`, fixed before it was drawn. The default initiator is unchanged; beside it,
-# the opt-ins `TH.HELDOUT_OPTS` (chosen on seeds 11 and 777: exploratory): **hold-and-confirm**
-# (a 3-hit candidate waits a frame, so a 4-hit track through its detections wins), an
-# **acceleration-aware** χ² for 3 hits with 4-hit quadratic extensions, its widening
-# **density-capped** (the widened discs of a frame triple, summed over all seed pairs, hold at
-# most `chance_budget` chance triplets in expectation). The benchmark's
-# stored record (60 scenes per seed, `benchmarks/bench_track_init_hough.py --record`):
+# more false tracks than logic 3/4, ≤ 5 / 50 ms per frame at 200 / 1,000 candidates) and each
+# decisive seed were fixed before that seed was drawn; a seed is decisive for one code only.
+# The default initiator now has a **growth engine** (`grow=True`): acceleration-widened 3-of-4
+# seeds are grown over the whole sequence with a least-squares constant-acceleration fit
+# (irregular intervals and gaps allowed, discs cut by each frame's own clutter density, so a
+# burst frame gets a smaller disc), and one best-first selection over the sequence prefers
+# longer tracks, so a chance triplet cannot take the detections of a longer track. It runs only
+# when the causal engine's result holds a track that only a constant-acceleration fit explains,
+# so scenes of constant-velocity objects (the paper's) keep the causal tracks. Stored record of
+# `benchmarks/bench_track_init_hough.py --record` (60 scenes per seed):
 
 # %%
 _rec_file = papers_repro_dir() / TH.SLUG / "heldout_benchmark.json"
@@ -750,76 +750,71 @@ if _rec_file.exists():
     crit_rows = []
     for seed_r, sr in rec["seeds"].items():
         lg = sr["initiators"]["logic 3/4"]
-        for name in ("modified Hough (ours, default)", "modified Hough (ours, held-out opt-ins)"):
-            r = sr["initiators"][name]
-            pname = "modified Hough (ours)" if "default" in name else name
+        for name, r in sr["initiators"].items():
             crit_rows.append({
                 "seed": f"{seed_r} ({sr['role']})", "initiator": name,
-                "recall": r["recall"], f"recall ≥ {tg['recall']}": r["recall"] >= tg["recall"],
-                "false per scene": r["false per scene"],
-                "logic 3/4 false": lg["false per scene"],
-                "false ≤ logic": r["false per scene"] <= lg["false per scene"],
-                "CPU ms/frame at 200": pf.loc[(pname, 200), "CPU ms/frame"],
-                "CPU ms/frame at 1000": pf.loc[(pname, 1000), "CPU ms/frame"]})
+                "recall": r["recall"], "false per scene": r["false per scene"],
+                "GOSPA": r.get("gospa"), "SIAP completeness": r.get("siap completeness"),
+                "meets": (r["recall"] >= tg["recall"]
+                          and r["false per scene"] <= lg["false per scene"])
+                if name != "logic 3/4" else None})
+    crit = pd.DataFrame(crit_rows)
+    dec = crit[crit["seed"].str.contains("decisive\\)", regex=True)].set_index("initiator")
+    d = dec.loc["modified Hough (ours, default)"]
     display(Markdown(
-        f"Recorded {rec['date']} at load average {rec['load average at start']:.1f} on "
-        f"{rec['cpu count']} cores: CPU times are inflated by the load, so the time budgets "
-        f"({tg['ms per frame at 200']:g} / {tg['ms per frame at 1000']:g} ms) are judged "
-        "only by ratio here — the opt-ins against the default at the same load: "
-        f"{pf.loc[('modified Hough (ours, held-out opt-ins)', 200), 'CPU ms/frame'] / pf.loc[('modified Hough (ours)', 200), 'CPU ms/frame']:.1f}× "
-        f"at 200, "
-        f"{pf.loc[('modified Hough (ours, held-out opt-ins)', 1000), 'CPU ms/frame'] / pf.loc[('modified Hough (ours)', 1000), 'CPU ms/frame']:.1f}× "
-        "at 1,000 candidates."))
-    display(pd.DataFrame(crit_rows).round(3))
+        f"Recorded {rec['date']} (load {rec['load average at start']:.1f} → "
+        f"{rec['load average at end']:.1f}, {rec['cpu count']} cores). On the decisive seed the "
+        f"default reaches recall {d['recall']:.3f} with {d['false per scene']:.1f} false tracks "
+        f"per scene (logic 3/4: {dec.loc['logic 3/4', 'recall']:.3f}, "
+        f"{dec.loc['logic 3/4', 'false per scene']:.1f}): the recall target is "
+        f"{'met' if d['recall'] >= tg['recall'] else '**not met**'}. CPU per frame of the default "
+        f"{pf.loc[('modified Hough (ours)', 200), 'CPU ms/frame']:.1f} ms at 200 and "
+        f"{pf.loc[('modified Hough (ours)', 1000), 'CPU ms/frame']:.1f} ms at 1,000 uniform "
+        "candidates (crowded frames run the causal engine); the growth engine forced: "
+        f"{pf.loc[('modified Hough (ours, growth forced)', 200), 'CPU ms/frame']:.1f} and "
+        f"{pf.loc[('modified Hough (ours, growth forced)', 1000), 'CPU ms/frame']:.1f} ms. "
+        "It buys recall with false tracks: more than the causal engine, fewer than logic 3/4."))
+    display(crit.round(3))
 
 # %% [markdown]
-# The same on a few scenes here:
+# The same on a few scenes here (a tuning seed), with the misses of the default sorted by
+# cause:
 
 # %%
 from eotrack.tracking.initiation import LogicInitiator
 
 held_inits = {"ours (default)": ModifiedHoughInitiator(v_min=3, v_max=240),
-              "ours + HELDOUT_OPTS": ModifiedHoughInitiator(v_min=3, v_max=240, **TH.HELDOUT_OPTS),
+              "ours, causal (grow=False)": ModifiedHoughInitiator(v_min=3, v_max=240, grow=False),
               "logic 3/4": LogicInitiator(n=3, m=4, v_min=3, v_max=240, gate_px=10.0)}
 held_rows = []
-miss = {"missed": 0, "stolen": 0, "seen 3 times": 0}  # the opt-ins' misses, held-out seed
-for seed_h in (777, TH.HELDOUT_SEED):
-    h_rng = np.random.default_rng(seed_h)
-    tot = {k: np.zeros(3) for k in held_inits}
-    n_held = max(2, N["aux"] // 2)
-    for _ in range(n_held):
-        h_sc = TH.heldout_scene(h_rng, TH.HeldOutConfig())
-        for name, ini in held_inits.items():
-            h_tr = ini.initiate(h_sc.frames)
-            r = TH.score_tracks(h_tr, h_sc)
-            tot[name] += (r["correct"], r["eligible"], r["false"])
-            if name != "ours + HELDOUT_OPTS" or seed_h != TH.HELDOUT_SEED:
+miss = {"missed": 0, "stolen": 0, "seen 3 times": 0}  # the default's misses
+h_rng = np.random.default_rng(777)
+tot = {k: np.zeros(3) for k in held_inits}
+n_held = max(2, N["aux"] // 2)
+for _ in range(n_held):
+    h_sc = TH.heldout_scene(h_rng, TH.HeldOutConfig())
+    for name, ini in held_inits.items():
+        h_tr = ini.initiate(h_sc.frames)
+        r = TH.score_tracks(h_tr, h_sc)
+        tot[name] += (r["correct"], r["eligible"], r["false"])
+        if name != "ours (default)":
+            continue
+        used = {(f, d) for t in h_tr for f, d in t.hits if f <= t.confirmed_at}
+        for i in range(h_sc.n_targets):
+            dets = [(f, int(d)) for f, lab in enumerate(h_sc.labels)
+                    for d in np.flatnonzero(lab == i)]
+            seen = np.array([np.any(lab == i) for lab in h_sc.labels], int)
+            if np.convolve(seen, np.ones(4, int), "valid").max() < 3 or i in r["confirm_frame"]:
                 continue
-            used = {(f, d) for t in h_tr for f, d in t.hits if f <= t.confirmed_at}
-            for i in range(h_sc.n_targets):
-                dets = [(f, int(d)) for f, lab in enumerate(h_sc.labels)
-                        for d in np.flatnonzero(lab == i)]
-                seen = np.array([np.any(lab == i) for lab in h_sc.labels], int)
-                if np.convolve(seen, np.ones(4, int), "valid").max() < 3 or i in r["confirm_frame"]:
-                    continue
-                miss["missed"] += 1
-                miss["stolen"] += any(x in used for x in dets)
-                miss["seen 3 times"] += len(dets) == 3
-    held_rows += [{"seed": f"{seed_h} ({'held out' if seed_h == TH.HELDOUT_SEED else 'tuning'})",
-                   "initiator": k, "scenes": n_held, "recall": c / max(e, 1),
-                   "false per scene": f / n_held} for k, (c, e, f) in tot.items()]
-held = pd.DataFrame(held_rows)
-_h = held[held["seed"].str.contains("held out")].set_index("initiator")
-_met = (_h.loc["ours + HELDOUT_OPTS", "recall"] >= TH.HELDOUT_TARGETS["recall"]
-        and _h.loc["ours + HELDOUT_OPTS", "false per scene"] <= _h.loc["logic 3/4", "false per scene"])
+            miss["missed"] += 1
+            miss["stolen"] += any(x in used for x in dets)
+            miss["seen 3 times"] += len(dets) == 3
+held = pd.DataFrame([{"initiator": k, "scenes": n_held, "recall": c / max(e, 1),
+                      "false per scene": f / n_held} for k, (c, e, f) in tot.items()])
 display(Markdown(
-    f"Held-out seed, {n_held} scenes: default recall {_h.loc['ours (default)', 'recall']:.3f}, "
-    f"with the opt-ins {_h.loc['ours + HELDOUT_OPTS', 'recall']:.3f} "
-    f"({_h.loc['ours + HELDOUT_OPTS', 'false per scene']:.1f} false tracks per scene; logic 3/4 "
-    f"{_h.loc['logic 3/4', 'recall']:.3f}, {_h.loc['logic 3/4', 'false per scene']:.1f}). "
-    f"Recall target {'met' if _met else '**not met**'} here. Of its {miss['missed']} missed objects, "
-    f"{miss['stolen']} lost a detection to another track (a chance triplet or a mixed one) and "
-    f"{miss['seen 3 times']} were seen only three times, where no four-hit test can help."))
+    f"Of the default's {miss['missed']} missed objects here, {miss['stolen']} lost a detection "
+    f"to another track and {miss['seen 3 times']} were seen only three times: three hits of an "
+    "accelerating object fit any chance triplet as well, so no longer track can vouch for them."))
 held.round(3)
 
 # %% [markdown]
@@ -940,9 +935,11 @@ if answer is not None:
 #
 # **Reviews.** Round 1 (issue 27): 18 findings (3 high, 8 medium, 7 low), 15 fixed or answered,
 # 3 left — the held-out target, the bare procedure, random Table 1. The last two are now in
-# Beyond. The held-out recall target is **not met** (Beyond's stored record): the default
-# initiator is unchanged, the opt-ins raise recall but not to 0.90 and cost more time per frame
-# at 1,000 candidates. Round 2 (independent review of this session): 14 findings (2 high,
+# Beyond. The held-out recall target is **not met** on the final code's decisive seed (Beyond's
+# stored record, where the numbers are computed): the default's new growth engine raises recall
+# well above the causal engine's and logic 3/4's, with fewer false tracks than logic 3/4, but
+# below 0.90; a version with growth always on met it on its own decisive seed and was dropped
+# because it changed the paper's scenes. Round 2 (independent review of this session): 14 findings (2 high,
 # 4 medium, 8 low); 13 fixed — the decisive seed re-drawn after a change made on seeing the
 # first one (both reported), the density cap made causal and robust, all three criteria shown,
 # option combinations that were silently ignored refused, exercise 2's tolerance, and eight
