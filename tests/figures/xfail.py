@@ -15,6 +15,4 @@ XFAIL: dict[str, str] = {
     # stored 07 prediction figure (cell 50): multi-line x tick labels 'Haleakala\n14128', …
     # overlap each other (9); the lint case passes (other data); request fig-capstone.md, 07:10
     "notebook:07_capstone_geo_surveillance": "CAP",
-    # red/green scatter markers of one shape (review figs #3 fix, 07:11): fig-akf_star.md
-    "case:akf_star.plot_confidence_trace": "P05",
 }

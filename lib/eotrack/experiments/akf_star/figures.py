@@ -301,11 +301,14 @@ def plot_confidence_trace(seq: Any, track: Any, axes: Any = None) -> Any:
     axes[0].plot(seq.visible, label="cloud transmission at the star")
     axes[0].plot(track.confidence, ".", ms=3, label=r"$C_k$")
     modes = np.asarray(track.modes)
-    for m, (name, col) in enumerate((("update", "tab:green"), (r"inflated $R$", "tab:orange"),
-                                     ("predict only", "tab:red"))):
+    # one marker shape per mode as well as a colour (green and red alone read alike to a
+    # deuteranope)
+    for m, (name, col, mk, size) in enumerate((("update", "tab:green", "|", 60),
+                                               (r"inflated $R$", "tab:orange", "^", 14),
+                                               ("predict only", "tab:red", "x", 20))):
         sel = modes == m
         axes[0].scatter(np.flatnonzero(sel), np.full(int(sel.sum()), -0.1), color=col,
-                        marker="|", s=60, label=f"mode: {name}")
+                        marker=mk, s=size, label=f"mode: {name}")
     axes[0].set_ylim(-0.2, 1.05)
     axes[0].set_ylabel("transmission, confidence")
     axes[0].legend(fontsize=8, ncol=3, loc="upper center", bbox_to_anchor=(0.5, -0.12),
