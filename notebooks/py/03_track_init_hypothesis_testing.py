@@ -414,16 +414,18 @@ ratio7, ratiox = r7["snr_low_ratio"][snrs[j1]], rx["snr_low_ratio"][snrs[j1]]  #
 pd_need = E.robust_pd(p_f, W, TS, rf["s_min"])  # per-pixel P_D the exact count needs
 st1 = E.status_fig1(E.fig1_measurement(f1))  # the pre-stated criterion (claims.toml)
 display(Markdown(
-    f"**Reading Fig. 1.** With eqs. (4) and (7) the readings hold ({r7['all_hold']}), **but the "
+    f"**Reading Fig. 1.** With eqs. (4) and (7) the readings "
+    f"{'hold' if r7['all_hold'] else 'do not all hold'}, **but the "
     f"Monte Carlo follows the exact count, not eq. (7)** (inside the intervals at "
     f"{agree['P_DA exact count'].fraction_inside:.0%} versus "
     f"{agree['P_DA eq. (7)'].fraction_inside:.0%} of the points). At the smallest admissible "
     f"$S$ = {s_min}, the {TS} target pixels at SNR 2 give on average {TS * pd2:.2f} suspicious "
     f"pixels and alone reach $S$ with probability {tgt_only:.3f}. $P_{{DA}}$ falls slowly "
-    f"(SNR 3, $S$ = 1 → 5: ×{fall_da:.0f}; $P_{{FA}}$ ×{fall_fa:.1e}) but from too low a start. "
+    f"compared with $P_{{FA}}$ (SNR 3, $S$ = 1 → 5: ×{fall_da:.0f}; $P_{{FA}}$ ×{fall_fa:.1e}), "
+    f"but by the first admissible $S$ it is {f1.pda_exact[j3, i_s]:.2f} at SNR 3. "
     f"Status by the pre-stated criterion: "
-    f"**{st1}** (readings hold for eq. (7): {r7['all_hold']}; for the exact count: "
-    f"{rx['all_hold']}).\n\n"
+    f"**{st1}** (readings hold for eq. (7): {'yes' if r7['all_hold'] else 'no'}; for the "
+    f"exact count: {'yes' if rx['all_hold'] else 'no'}).\n\n"
     f"**Exploratory** (a rule written after these results were seen; not the status). At "
     f"$S$ = {rf['s_min']} the Monte Carlo $P_{{DA}}$ is "
     + " and ".join(f"{v:.3f} at SNR {sn:g} (upper bound {u:.3f})"
@@ -433,7 +435,8 @@ display(Markdown(
     + f"Whatever the link, the exact count needs $P_D \\ge$ {pd_need:.3f} per target pixel.\n\n"
     f"**SNR 1** ('$P_{{DA}}$ very close to $P_{{FA}}$'): at $S$ = {s_min} eq. (7) gives "
     f"$P_{{DA}}/P_{{FA}}$ = {ratio7:.0f} (exact count {ratiox:.0f}); the criterion's cut (no "
-    f"admissible $S$ with $P_{{DA}} \\ge$ {E.FAIL_PDA:g}) is met ({r7['snr_low_fails']})."))
+    f"admissible $S$ with $P_{{DA}} \\ge$ {E.FAIL_PDA:g}) is "
+    f"{'met' if r7['snr_low_fails'] else 'not met'}."))
 best
 
 # %% [markdown]
@@ -603,10 +606,11 @@ display(Markdown(
 claims = [E.evaluate_fig1(f1), E.evaluate_fig2(f2, min_hits=TH),
           E.evaluate_experiment(ex, sweep, st)]
 card = scorecard(claims)
-split = card["note"].str.split("Exploratory reading ", n=1, expand=True).reindex(columns=[0, 1])
+split = card["note"].str.split(r"(?=Exploratory )", n=1, expand=True, regex=True)
+split = split.reindex(columns=[0, 1])
 card["reason"], card["exploratory (not the status)"] = split[0], split[1].fillna("")
 with pd.option_context("display.max_colwidth", None):  # full text: nothing cut off
-    display(card[["claim", "kind", "central", "status", "reason",
+    display(card[["claim", "kind", "central", "ours", "status", "reason",
                   "exploratory (not the status)"]].set_index("claim"))
 
 # %%

@@ -356,3 +356,19 @@ def test_committed_sequence_study_is_current():
                              n_runs=n.sequences, seed=exp.SEEDS["sequences"],
                              snrs=[st.curved_snr + d for d in exp.SWEEP_SNR])
     assert all(len(v) == n.sequences for v in by_snr.values())
+
+
+def test_bad_input_of_the_store_and_robust_pd(tmp_path):
+    st = _small_settings()
+    snrs = [st.curved_snr + d for d in exp.SWEEP_SNR]
+    for text in ("[]", "{", '{"runs": 1}'):
+        p = tmp_path / "bad.json"
+        p.write_text(text)
+        with pytest.raises(ValueError, match="not a stored study"):
+            exp.read_stored(p, st, n_runs=2, seed=7, snrs=snrs)
+        _, _, src = exp.sequence_study(st, 2, 2, seed=7, path=p)  # falls back, says why
+        assert src.startswith("live run") and "bad.json" in src
+    with pytest.raises(ValueError, match="n_runs"):
+        exp.write_stored(tmp_path / "x.json", st, {st.curved_snr: []}, n_runs=0, seed=7)
+    with pytest.raises(ValueError, match="s must be"):
+        exp.robust_pd(0.003, 5, 4, 0)

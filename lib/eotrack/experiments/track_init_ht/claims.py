@@ -150,7 +150,15 @@ def eq7_ratio_floor(p_f: float, window: int, target_pixels: int, s: int) -> floa
 def robust_pd(p_f: float, window: int, target_pixels: int, s: int,
               level: float = HIGH_PDA) -> float:
     """Per-pixel P_D the exact count needs for P_DA >= ``level`` at threshold ``s`` (bisection):
-    any SNR link giving a smaller P_D keeps the 'SNR works' reading refuted."""
+    any SNR link giving a smaller P_D keeps the 'SNR works' reading refuted.
+
+    Raises
+    ------
+    ValueError
+        ``s`` outside ``1 .. window**2`` (eq. 4's domain).
+    """
+    if isinstance(s, bool) or not isinstance(s, (int, np.integer)) or not 1 <= s <= window ** 2:
+        raise ValueError(f"s must be an int in 1..{window ** 2} (eq. 4's domain), got {s!r}")
     lo, hi = 0.0, 1.0
     for _ in range(60):
         mid = 0.5 * (lo + hi)

@@ -88,6 +88,8 @@ def write_stored(path: str | Path, st: SequenceSettings, runs_by_snr: dict[float
     ValueError
         The paper's SNR is missing or a list does not hold ``n_runs`` runs.
     """
+    if isinstance(n_runs, bool) or not isinstance(n_runs, (int, np.integer)) or n_runs < 1:
+        raise ValueError(f"n_runs must be a positive int, got {n_runs!r}")
     if float(st.curved_snr) not in {float(k) for k in runs_by_snr}:
         raise ValueError(f"runs_by_snr must hold the experiment's SNR {st.curved_snr:g}")
     bad = {k: len(v) for k, v in runs_by_snr.items() if len(v) != n_runs}
@@ -121,7 +123,14 @@ def read_stored(path: str | Path, st: SequenceSettings, *, n_runs: int,
     if not p.is_file():
         raise FileNotFoundError(f"{p} does not exist: `python -m eotrack.repro track_init_ht` "
                                 "(make repro) writes it")
-    d = json.loads(p.read_text())
+    try:
+        d = json.loads(p.read_text())
+    except (json.JSONDecodeError, UnicodeDecodeError) as exc:
+        raise ValueError(f"{p} is not a stored study (not valid JSON: {exc}): run `python -m "
+                         "eotrack.repro track_init_ht`") from None
+    if not isinstance(d, dict) or not isinstance(d.get("runs"), list):
+        raise ValueError(f"{p} is not a stored study (no table with 'runs'): run `python -m "
+                         "eotrack.repro track_init_ht`")
     want = {"format": _FORMAT, "code_hash": code_hash(), "settings": _settings(st),
             "n_runs": int(n_runs), "seed": _seed_key(seed), "snrs": [float(s) for s in snrs]}
     diff = [k for k, v in want.items() if d.get(k) != v]
