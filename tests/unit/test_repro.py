@@ -163,6 +163,8 @@ criterion = "c"
     ('kind = "check"\ncentral = true\n', r"claim 'demo\.x': a check cannot be central"),
     ('kind = "check"\npartial_band = "p"\n', r"claim 'demo\.x': a check passes or fails"),
     ('kind = "result"\ncentral = "yes"\n', r"claim 'demo\.x': central must be true or false"),
+    ('kind = "result"\ncentral = true\npartial_bnad = "p"\n',
+     r"claim 'demo\.x' has unknown key\(s\) \['partial_bnad'\]"),
     ('kind = "result"\n', r"no claim is marked central"),
     ('kind = "result"\ncentral = true\n[[claims."demo.x".history]]\ncriterion = "old"\n'
      'reason = "r"\nafter_results = false\n', r"claim 'demo\.x': history entry 0 needs a date"),

@@ -163,7 +163,17 @@ def _history(path: Path, cid: str, raw: Any) -> tuple[CriterionChange, ...]:
     return tuple(out)
 
 
+#: The keys a claim may have: anything else (a typo such as ``partial_bnad``) is an error, so
+#: that a band or flag "stated before the run" cannot silently fail to exist.
+CLAIM_KEYS = frozenset({"title", "source", "statement", "criterion", "kind", "paper", "central",
+                        "directional", "partial_band", "history"})
+
+
 def _claim(path: Path, cid: str, entry: dict[str, Any]) -> Claim:
+    unknown = set(entry) - CLAIM_KEYS
+    if unknown:
+        raise ValueError(f"{path}: claim {cid!r} has unknown key(s) {sorted(unknown)}; "
+                         f"allowed: {sorted(CLAIM_KEYS)}")
     missing = {"title", "source", "statement", "criterion", "kind"} - set(entry)
     if missing:
         raise ValueError(f"{path}: claim {cid!r} lacks {sorted(missing)}"
