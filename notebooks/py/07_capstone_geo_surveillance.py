@@ -245,6 +245,13 @@ if stored and "fine_pixels" in stored:
                     f"({v['plate_err_rms_arcsec'] / float(k):.3f} px), recall "
                     f"{v['recall']:.2f}, {v['false_tracks']} false tracks"
                     for k, v in fp.items() if v["plate_err_rms_arcsec"] is not None)
+        + f". The sample is small ({f5['bursts']} bursts of one object per scale). The plate "
+        "error in arcseconds does not shrink with the pixels here: it is "
+        + " / ".join(f"{v['plate_err_rms_arcsec']:.2f}″" for v in fp.values())
+        + " at " + " / ".join(f"{k}″" for k in fp) + "/px — at 5″/px the stars are 6-px "
+        "trails and the catalogue reaches G = "
+        f"{f5['astrometry_limit']:.1f}, near the detection limit; which of the two sets the "
+        "error is not measured here"
         + ". A configuration whose frames cannot hold enough detectable catalogue stars "
         "(`C.check_astrometry`) is warned about before the night, naming the settings to "
         "change."))
@@ -655,7 +662,7 @@ if len(bp):
         f"{int(fld['n_wrong'].sum())} of {int(fld['n_fit'].sum())} fitted tracklets belong to "
         "another object or none, all of them in the field(s) of "
         f"{sorted(set(dirty.index.get_level_values('object')))}; in those rows the better "
-        f"RANSAC-type predictor is ≥ {worst:.0f}× the LSQ error (why: exercise 4). Where no "
+        f"RANSAC-type predictor is ≥ {np.floor(worst * 10) / 10:.1f}× the LSQ error (why: exercise 4). Where no "
         f"wrong tracklet is fitted ({len(clean)} rows) the worst of them is at most "
         f"{(clean[['ransac', 'wransac']].max(axis=1) / clean['lsq']).max():.1f}× LSQ. The "
         "fix — identify first — measured (LSQ, RMS over rows), field → catalogue-correlated → "
