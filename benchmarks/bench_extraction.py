@@ -31,6 +31,7 @@ import numpy as np
 import sep
 from eotrack.imaging import (
     SkyConfig,
+    camera_frame,
     clean_isolated,
     completeness_at,
     completeness_curve,
@@ -209,28 +210,17 @@ def bench_quantised(n_frames: int = 4) -> None:
               f"{n_old / mpx:.1f}, SEP 3σ {n_sep / mpx:.1f}")
 
 
-def _camera_frame(rng: np.random.Generator, gain: float, n: int = 1024, n_stars: int = 480,
-                  quantise: bool = True):
-    """Camera-like frame: Poisson sky 20 e⁻, stars of PSF σ 1.4 px with peak SNR uniform in
-    3-12, read noise 3 e⁻, gain e⁻/DN, bias 100 DN, rounded to integer DN (or not)."""
-    xy = rng.uniform(12, n - 12, (n_stars, 2))
-    snr = rng.uniform(3.0, 12.0, n_stars)
-    flux = snr * np.sqrt(29.0) * 2 * np.pi * 1.4 ** 2
-    e = rng.poisson(render_gaussian_spots((n, n), xy, flux, 1.4) + 20.0) \
-        + rng.normal(0, 3.0, (n, n))
-    dn = e / gain + 100.0
-    return (np.round(dn) if quantise else dn).astype(np.float32), xy, snr
-
-
 def bench_quantised_stars() -> None:
     """The quantised threshold where it is active WITH stars: camera-like 1024² frames at gain 16
     e⁻/DN (noise 0.34 DN, i.e. σ ≤ 3 steps), integer vs the same frame unrounded; completeness
     by peak SNR at the default, completeness at SEP's false detections (threshold sweeps) and
     time vs SEP."""
-    rng = np.random.default_rng(13)
-    q, xy, snr = _camera_frame(rng, 16.0)
-    rng = np.random.default_rng(13)
-    f, _, _ = _camera_frame(rng, 16.0, quantise=False)
+    # camera_frame: Poisson sky 20 e⁻, stars of PSF σ 1.4 px with peak SNR uniform in 3-12,
+    # read noise 3 e⁻, bias 100 DN, rounded to integer DN (or not)
+    q, xy, snr = camera_frame(np.random.default_rng(13), 1024, 480, gain=16.0,
+                              dtype=np.float32)
+    f, _, _ = camera_frame(np.random.default_rng(13), 1024, 480, gain=16.0, dtype=np.float32,
+                           quantise=False)
     bins = ((3, 4), (4, 5), (5, 6), (6, 8), (8, 12))
     for label, img in (("integer", q), ("unrounded", f)):
         hit = match_positions(extract_stars(img).xy, xy, 1.0)[0]
