@@ -94,11 +94,12 @@ def _lattice(image: Any) -> tuple[float, float]:
         return 0.0, 0.0
     z0 = float(u[np.argmax(cnt)])                        # the most frequent value
     best = (0.0, 0.0)
+    n = float(len(v))
     for mult in range(1, 13):                            # the coarsest lattice that fits
         delta = mult * d0
-        r = (v - z0) / delta
+        r = (u - z0) / delta                             # on the distinct values, weighted
         on = np.abs(r - np.rint(r)) * delta <= 0.01 * delta + tol
-        share = float(on.mean())
+        share = float(cnt[on].sum()) / n
         if share >= _ON_STRICT or (share >= _ON_TOLERANT and _looks_patched(
                 u, cnt, popular, z0, delta, d0, mult, tol)):
             k = np.rint(r[on])
