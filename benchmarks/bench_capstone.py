@@ -13,7 +13,8 @@
    and this output to ``papers_repro/capstone/bench_capstone.txt``; notebook 07 reads them.
 
 Run: ``.venv/bin/python benchmarks/bench_capstone.py`` (≈ 5 min CPU). ``--quick``: only the
-QUICK night's timing (nothing written).
+QUICK night's timing (nothing written). ``--seeds K``: only the seed-stability run (the whole
+night's scorecard on root seeds 1 … K; ≈ 35 s per seed) → ``seed_stability.json``.
 """
 
 from __future__ import annotations
@@ -75,6 +76,31 @@ def quick_notebook() -> tuple[float, float]:
 FINE_SCALES = (5.0, 10.0, 30.0)
 
 
+def fine_pixels_sky(levels=(400.0, 800.0, 1600.0, 3200.0)) -> dict:
+    """14128 alone at 5″/px, 6 sunlit bursts, default settings, per sky level: false tracks,
+    false candidates per frame and recall (review 30 round 2: false tracks grew with the sky —
+    star trails cut by the frame edge; now a border of half a trail + 3 σ holds no
+    candidate)."""
+    from eotrack.montecarlo import trial_generators
+
+    res = {}
+    for sky in levels:
+        cfg = C.with_changes(norad_ids=(14128,), cluster=(), pixel_scale_arcsec=5.0,
+                             cloud_frames=(), night_start_utc="2006-03-25T07:00:00",
+                             night_hours=2.0, sky_e=sky)
+        plan = C.make_plan(cfg)
+        gens = trial_generators(cfg.seed, len(plan.bursts))
+        idx = [i for i, b in enumerate(plan.bursts) if b.target_flux[0].min() > 0][:6]
+        rs = [C.observe_burst(gens[i], plan) for i in idx]
+        res[f"{sky:g}"] = {
+            "bursts": len(rs),
+            "false_tracks": int(sum(not t["true"] for r in rs for t in r.tracks)),
+            "false_candidates_per_frame": float(np.mean([r.n_false_candidates.mean()
+                                                         for r in rs])),
+            "recall": float(np.mean([any(t["true_obj"] == 0 for t in r.tracks) for r in rs]))}
+    return res
+
+
 def fine_pixels() -> dict:
     """14128 alone, 6 sunlit bursts, DEFAULT settings at other pixel scales (5, 10, 30″/px: the
     catalogue depth follows the field, the stars trailing ≥ 3 px are extracted trail-aware):
@@ -106,7 +132,47 @@ def fine_pixels() -> dict:
     return res
 
 
+SEED_FILE = "seed_stability.json"
+
+
+def seeds(k: int) -> None:
+    """The whole night's scorecard on the independent root seeds 1 … k (criteria unchanged),
+    written to ``papers_repro/capstone/seed_stability.json`` (with the code hash)."""
+    per, budget_rows = {}, {}
+    t0 = time.perf_counter()
+    for sd in range(1, k + 1):
+        cfg = C.with_changes(seed=sd)
+        night = C.run_night(cfg)
+        sc = C.scorecard(night)
+        per[sd] = sc
+        val = dict(zip(night.budget["metric"], night.budget["value"]))
+        budget_rows[sd] = {m: float(val[m]) for m in (
+            "RMS range error", "expected RMS range error from the measured in-plane ray errors",
+            "per-ray angle error (RMS, tracklet hits)",
+            "plate solution: true error at the objects (RMS)",
+            "recall (object-bursts with ≥ 3 sunlit frames)", "correct pairs, cluster field",
+            "GOSPA per burst (mean, c = 5 px)", "false tracks")}
+        say(f"seed {sd}: " + "; ".join(f"{r.key} {r.measured:.3g} "
+                                      f"{'pass' if r._5 else 'FAIL'}"
+                                      for r in sc.itertuples()))
+    wall = time.perf_counter() - t0
+    tab = C.seed_stability(per)
+    say(f"{k} seeds in {wall:.0f} s wall (load {os.getloadavg()[0]:.1f} at the end)\n"
+        + tab.to_string())
+    p = S.write_stored(papers_repro_dir() / "capstone" / SEED_FILE, {
+        "seeds": list(per), "table": tab.to_json(orient="split", double_precision=15),
+        "scorecards": {str(sd): sc.to_json(orient="split", double_precision=15)
+                       for sd, sc in per.items()},
+        "budget": {str(sd): v for sd, v in budget_rows.items()},
+        "wall_s": wall, "load_end": os.getloadavg()[0]})
+    say(f"wrote {p.relative_to(ROOT)}")
+    (papers_repro_dir() / "capstone" / "seed_stability.txt").write_text("\n".join(LINES) + "\n")
+
+
 def main() -> None:
+    if "--seeds" in sys.argv:
+        seeds(int(sys.argv[sys.argv.index("--seeds") + 1]))
+        return
     say(f"load average at start: {os.getloadavg()[0]:.1f} (2 cores)")
     t0, c0 = time.perf_counter(), time.process_time()
     C.make_plan(C.CapstoneConfig())
@@ -132,9 +198,16 @@ def main() -> None:
     out["fine_pixels"] = fine_pixels()
     say("14128 alone, 6 sunlit bursts, default settings, per pixel scale: "
         + "; ".join(f"{k}″/px {v}" for k, v in out["fine_pixels"].items()))
+    out["fine_pixels_sky"] = fine_pixels_sky()
+    say("14128 alone at 5″/px, 6 sunlit bursts, per sky level (e⁻/px): "
+        + "; ".join(f"{k} {v}" for k, v in out["fine_pixels_sky"].items()))
+    out["hypotheses"] = C.hypothesis_count_study(night).to_json(orient="split",
+                                                                 double_precision=15)
     wall6, cpu6, bright = timed(C.with_changes(cfg, sky_e=6400.0), strict=False)
     say(f"whole night at 6,400 e⁻/px: {wall6:.1f} s wall, {cpu6:.1f} s CPU")
     out["night_6400"] = S.night_summary(bright, run_wall_s=wall6, run_cpu_s=cpu6)
+    out["hypotheses_6400"] = C.hypothesis_count_study(bright).to_json(orient="split",
+                                                                       double_precision=15)
     bq = C.run_night(C.with_changes(quick, sky_e=6400.0), strict=False)
     sweep = C.noise_sweep(quick, C.SKY_LEVELS, known={quick.sky_e: qn, 6400.0: bq})
     out["sweep"] = sweep.to_json(orient="split", double_precision=15)

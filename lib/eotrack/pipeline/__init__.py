@@ -23,6 +23,7 @@ from .measure import (
     FrameMeasurement,
     FrameSkippedWarning,
     PipelineConfig,
+    cross_trail_psf_sigma,
     default_initiator,
     extract_frame,
     initiate_tracks,
@@ -30,6 +31,7 @@ from .measure import (
     measure_frames,
     separate_targets,
     star_trail_px,
+    target_border_px,
 )
 from .simulate import SimulatedSequence, simulate_sequence
 
@@ -43,6 +45,7 @@ __all__ = [
     "PlateSolution",
     "PlateSolveError",
     "SimulatedSequence",
+    "cross_trail_psf_sigma",
     "default_initiator",
     "extract_frame",
     "initiate_tracks",
@@ -52,5 +55,6 @@ __all__ = [
     "separate_targets",
     "simulate_sequence",
     "star_trail_px",
+    "target_border_px",
     "write_fits",
 ]

@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import warnings
 from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from os import PathLike
 from pathlib import Path
 from typing import Any
@@ -35,6 +35,7 @@ from eotrack.astro.astrometry import (
 )
 from eotrack.astro.catalog import StarCatalog
 from eotrack.imaging import SkyConfig, extract_stars
+from eotrack.imaging.background import BackgroundConfig, background_map
 from eotrack.imaging.trails import extract_trailed
 from eotrack.tracking.initiation import ModifiedHoughInitiator
 from eotrack.validation import as_points, check_choice, check_int, check_positive
@@ -46,6 +47,7 @@ __all__ = [
     "FrameMeasurement",
     "FrameSkippedWarning",
     "PipelineConfig",
+    "cross_trail_psf_sigma",
     "default_initiator",
     "extract_frame",
     "initiate_tracks",
@@ -53,6 +55,7 @@ __all__ = [
     "measure_frames",
     "separate_targets",
     "star_trail_px",
+    "target_border_px",
 ]
 
 #: Earth's rotation rate (rad/s): a staring (Earth-fixed) mount sees the stars drift at it
@@ -238,6 +241,70 @@ def star_trail_px(frame: Frame, mount: str = "staring") -> np.ndarray:
     return np.asarray(p[1] - p[0], float)
 
 
+def cross_trail_psf_sigma(image: Any, xy: Any, trail_px: Any, *,
+                          background: BackgroundConfig | None = None, window: float = 2.0,
+                          n_stars: int = 50, default: float = 1.0) -> float:
+    """PSF σ (px) measured across the star trails of a frame.
+
+    A Gaussian PSF drawn along a straight trail is separable in the (along, across) axes, and
+    its profile across the trail is the PSF itself, whatever the trail's length. For each of
+    the brightest detections (``xy``, brightest first; the first tenth skipped — saturation —,
+    then ``n_stars``) the background-subtracted stamp is weighted by a Gaussian window of σ
+    ``window`` across the trail and a box of the trail's length + 2 px along it; the windowed
+    second moment across, ``m``, gives ``σ² = m w² / (w² − m)`` (the estimate of
+    :func:`eotrack.imaging.estimate_psf_sigma`, along one axis). The median over the stars is
+    returned, clipped to 0.4–6 px (``default`` when no star gives a valid moment).
+    """
+    img = np.asarray(image, float)
+    if img.ndim != 2:
+        raise ValueError(f"image must be 2-D, got shape {img.shape}")
+    p = as_points(xy, "xy")
+    t = np.asarray(trail_px, float).reshape(-1)
+    if t.shape != (2,) or not np.all(np.isfinite(t)):
+        raise ValueError(f"trail_px must be a finite (dx, dy), got {trail_px!r}")
+    w = check_positive(window, "window")
+    n = check_int(n_stars, "n_stars", min_value=1)
+    length = float(np.hypot(*t))
+    if length == 0 or len(p) == 0:
+        return float(default)
+    ua = t / length
+    up = np.array([-ua[1], ua[0]])
+    sub = img - background_map(img, background).back
+    half = length / 2 + 1.0
+    h = int(np.ceil(half + 3 * w))
+    H, W = img.shape
+    pick = p[len(p) // 10: len(p) // 10 + n]
+    sig2 = []
+    off = np.arange(-h, h + 1)
+    for x, y in pick:
+        ix, iy = int(np.rint(x)), int(np.rint(y))
+        if ix - h < 0 or iy - h < 0 or ix + h >= W or iy + h >= H:
+            continue                                  # a stamp cut by the edge
+        st = np.maximum(sub[iy - h: iy + h + 1, ix - h: ix + h + 1], 0.0)
+        dx = (ix + off)[None, :] - x
+        dy = (iy + off)[:, None] - y
+        a = dx * ua[0] + dy * ua[1]
+        q = dx * up[0] + dy * up[1]
+        box = np.abs(a) <= half
+        c = 0.0
+        for _ in range(3):                            # re-centre across the trail
+            wt = st * box * np.exp(-(q - c) ** 2 / (2 * w * w))
+            s = wt.sum()
+            if s <= 0:
+                break
+            c = float((wt * q).sum() / s)
+        wt = st * box * np.exp(-(q - c) ** 2 / (2 * w * w))
+        s = wt.sum()
+        if s <= 0:
+            continue
+        m = float((wt * (q - c) ** 2).sum() / s)
+        if 0 < m < 0.95 * w * w:
+            sig2.append(m * w * w / (w * w - m))
+    if not sig2:
+        return float(default)
+    return float(np.clip(np.sqrt(np.median(sig2)), 0.4, 6.0))
+
+
 def extract_frame(frame: Frame, config: PipelineConfig | None = None
                   ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Detections ``(xy (n, 2), flux, snr)`` of one frame, brightest first.
@@ -253,16 +320,24 @@ def extract_frame(frame: Frame, config: PipelineConfig | None = None
     if not isinstance(cfg, PipelineConfig):
         raise TypeError(f"config must be a PipelineConfig, got {type(cfg).__name__}")
     trail = star_trail_px(frame, cfg.mount)
-    res = extract_stars(frame.image, config=cfg.sky, return_info=True)
-    xy, flux, snr = res.xy.reshape(-1, 2), res.flux, res.snr
     length = float(np.hypot(*trail))
+    sky = cfg.sky
+    res = extract_stars(frame.image, config=sky, return_info=True)
+    if length >= cfg.trail_min_px and sky.psf_sigma is None:
+        # the point extractor's own PSF estimate (second moments of the brightest detections)
+        # is inflated by the trails (≈ 1.8 px for a 1-px PSF and 6-px trails), and a matched
+        # filter that wide loses faint point targets: measure the width across the trails
+        # and extract again with it
+        sky = replace(sky, psf_sigma=cross_trail_psf_sigma(frame.image, res.xy, trail,
+                                                           background=sky.background))
+        res = extract_stars(frame.image, config=sky, return_info=True)
+    xy, flux, snr = res.xy.reshape(-1, 2), res.flux, res.snr
     if length < cfg.trail_min_px:
         return xy, flux, snr
     # trailed stars: their trail-aware midpoints replace whatever the point extractor made of
     # them (a point detection inside a trail's footprint); the point detections elsewhere
     # (targets, and faint stars the trail filter did not take) are kept as they are
-    sky = cfg.sky
-    sig = sky.psf_sigma or 1.0
+    sig = float(sky.psf_sigma)
     tr = extract_trailed(frame.image, trail, psf_sigma=sig, thresh=sky.thresh,
                          background=sky.background)
     txy = tr.xy[tr.is_trail]
@@ -356,17 +431,40 @@ def _unit(ra_deg: np.ndarray, dec_deg: np.ndarray) -> np.ndarray:
                     ).reshape(-1, 3)
 
 
-def separate_targets(measured: Sequence[FrameMeasurement], *, radius_px: float = 2.5
-                     ) -> list[np.ndarray]:
+def target_border_px(frame: Frame, config: PipelineConfig | None = None) -> np.ndarray:
+    """Border ``(bx, by)`` (px) of ``frame`` in which no detection is a target candidate.
+
+    A star whose trail is cut by the frame's edge is centroided off its mid-exposure position,
+    so the neighbouring frame's detection of it is not at the same RA/Dec and the separation
+    would keep it as a candidate; lined up along the edge, such fragments form false tracks
+    (at 5″/px and 1,600 e⁻/px, 30 in 6 bursts, all within 4 px of the edge). The border is
+    half the star trail (:func:`star_trail_px`) plus 3 PSF σ per axis (``config.sky.psf_sigma``,
+    1 px if None), and at least 1 px.
+    """
+    cfg = PipelineConfig() if config is None else config
+    t = np.abs(star_trail_px(frame, cfg.mount))
+    sig = cfg.sky.psf_sigma or 1.0
+    if float(np.hypot(*t)) < cfg.trail_min_px:
+        return np.ones(2)
+    return np.maximum(t / 2 + 3 * sig, 1.0)
+
+
+def separate_targets(measured: Sequence[FrameMeasurement], *, radius_px: float = 2.5,
+                     border_px: Any = 1.0) -> list[np.ndarray]:
     """Target-candidate masks of the frames of one sequence (time order).
 
     A detection is a star if it is a catalogue star (``is_catalogue``) or if a detection of
     the previous or next frame lies at the same RA/Dec (within ``radius_px`` times the plate
     scale — uncatalogued faint stars). A detection whose sky position falls outside both
     neighbouring frames cannot be tested (a star entering or leaving the field) and is not a
-    candidate either. Everything else is a target candidate.
+    candidate either, nor one within ``border_px`` (a number or ``(bx, by)``;
+    :func:`target_border_px` for trailed stars) of its own frame's edge. Everything else is a
+    target candidate.
     """
     r = check_positive(radius_px, "radius_px")
+    bxy = np.broadcast_to(np.asarray(border_px, float), (2,))
+    if not np.all(np.isfinite(bxy) & (bxy >= 0)):
+        raise ValueError(f"border_px must be ≥ 0 (a number or (bx, by)), got {border_px!r}")
     n = len(measured)
     units = [_unit(m.ra_deg, m.dec_deg) for m in measured]
     trees = [cKDTree(v) if len(v) else None for v in units]
@@ -388,7 +486,11 @@ def separate_targets(measured: Sequence[FrameMeasurement], *, radius_px: float =
                 chord = 2 * np.sin(np.radians(r * mj.pixel_scale_arcsec / ARCSEC_PER_DEG) / 2)
                 d, _ = trees[j].query(units[k])
                 fixed |= inside & (d < chord)
-        out.append(~(m.is_catalogue | fixed) & testable)
+        ny0, nx0 = m.frame.shape
+        inner = (m.xy[:, 0] >= bxy[0]) & (m.xy[:, 0] <= nx0 - 1 - bxy[0]) & \
+            (m.xy[:, 1] >= bxy[1]) & (m.xy[:, 1] <= ny0 - 1 - bxy[1]) if nd else \
+            np.zeros(0, bool)
+        out.append(~(m.is_catalogue | fixed) & testable & inner)
     return out
 
 
@@ -426,7 +528,8 @@ def initiate_tracks(measured: Sequence[FrameMeasurement], *, config: PipelineCon
     if len(measured) < 4:
         raise ValueError(f"initiation needs at least 4 frames of a sequence, got "
                          f"{len(measured)}")
-    cand = separate_targets(measured, radius_px=cfg.star_radius_px)
+    cand = separate_targets(measured, radius_px=cfg.star_radius_px,
+                            border_px=target_border_px(measured[0].frame, cfg))
     t0 = measured[0].frame.time
     times = [float((m.frame.time - t0).to_value(u.s)) for m in measured]
     idx = [np.flatnonzero(c) for c in cand]

@@ -54,32 +54,36 @@ def _ax(ax, figsize=(6.4, 3.9)):
 
 
 def plot_pipeline(*, ax: plt.Axes | None = None) -> plt.Axes:
-    """Block diagram of the chain: two stations' per-frame stages merging into the 3-D ones."""
+    """Block diagram of the chain: two stations' per-frame stages (rendering, extraction, plate
+    solution against the catalogue, star/target separation, initiation) merging into the
+    two-station ones (association, triangulation, orbit fit, prediction)."""
     ax = _ax(ax, (7.4, 4.6))
-    ax.set_xlim(0, 10.4)
+    ax.set_xlim(0, 11.0)
     ax.set_ylim(0, 6.6)
     ax.set_axis_off()
-    per_station = [("frames", "PSF, noise, sky"), ("extraction", "nb 05"),
-                   ("star / target", "Gaia, drift"), ("initiation", "Hough, nb 04")]
-    joint = [("association", "epipolar · nb 02"), ("triangulation", "ranges · nb 02"),
-             ("prediction", "eclipse · nb 01")]
-    w, h = 2.0, 1.05
+    per_station = [("frames", "PSF, noise"), ("extraction", "nb 05"),
+                   ("astrometry", "plate vs Gaia"), ("star/target", "motion"),
+                   ("initiation", "Hough, nb 04")]
+    joint = [("association", "epipolar, nb 02"), ("triangulation", "nb 02"),
+             ("orbit fit", "J2, nb 01"), ("prediction", "eclipse, nb 01")]
+    w, h, dx = 1.8, 1.05, 1.9
 
     def box(x, y, text, note, colour):
         ax.add_patch(FancyBboxPatch((x, y), w, h, boxstyle="round,pad=0.04", fc=colour,
                                     ec="0.3", lw=1))
-        ax.text(x + w / 2, y + 0.68, text, ha="center", va="center", fontsize=9.5,
+        ax.text(x + w / 2, y + 0.68, text, ha="center", va="center", fontsize=8.5,
                 weight="bold")
-        ax.text(x + w / 2, y + 0.28, note, ha="center", va="center", fontsize=9, color="0.25")
+        ax.text(x + w / 2, y + 0.28, note, ha="center", va="center", fontsize=8,
+                color="0.25")
 
     def arrow(x0, y0, x1, y1):
-        ax.add_patch(FancyArrowPatch((x0, y0), (x1, y1), arrowstyle="-|>", mutation_scale=12,
+        ax.add_patch(FancyArrowPatch((x0, y0), (x1, y1), arrowstyle="-|>", mutation_scale=10,
                                      color="0.3", lw=1.2, shrinkA=0, shrinkB=0))
 
     ax.add_patch(FancyBboxPatch((0.05, 2.45), 1.0, 1.7, boxstyle="round,pad=0.04",
                                 fc="#fde7c4", ec="0.3"))
-    ax.text(0.55, 3.3, "sky\nSGP4\nGaia\nshadow", ha="center", va="center", fontsize=9)
-    xs = [1.45 + i * 2.22 for i in range(4)]
+    ax.text(0.55, 3.3, "sky\nSGP4\nGaia\nshadow", ha="center", va="center", fontsize=8)
+    xs = [1.45 + i * dx for i in range(len(per_station))]
     for y, name in ((5.1, "station A"), (0.4, "station B")):
         ax.text(xs[0], y + h + 0.12 if y > 3 else y - 0.38, name, fontsize=9, style="italic")
         arrow(1.05, 3.3 + (0.5 if y > 3 else -0.5), xs[0], y + h / 2)
@@ -88,13 +92,13 @@ def plot_pipeline(*, ax: plt.Axes | None = None) -> plt.Axes:
             if i:
                 arrow(xs[i - 1] + w, y + h / 2, xs[i], y + h / 2)
     yj = 2.75
-    xj = [xs[3], xs[2] - 0.35, xs[1] - 0.7]
+    xj = [xs[-1] - i * dx for i in range(len(joint))]
     for (t, n), x in zip(joint, xj, strict=True):
         box(x, yj, t, n, "#d9f0d3")
-    arrow(xs[3] + w / 2, 5.1, xs[3] + w / 2, yj + h)      # A → association
-    arrow(xs[3] + w / 2, 0.4 + h, xs[3] + w / 2, yj)      # B → association
-    arrow(xj[0], yj + h / 2, xj[1] + w, yj + h / 2)       # association → triangulation
-    arrow(xj[1], yj + h / 2, xj[2] + w, yj + h / 2)       # triangulation → prediction
+    arrow(xs[-1] + w / 2, 5.1, xs[-1] + w / 2, yj + h)     # A → association
+    arrow(xs[-1] + w / 2, 0.4 + h, xs[-1] + w / 2, yj)     # B → association
+    for i in range(1, len(joint)):                         # association → … → prediction
+        arrow(xj[i - 1], yj + h / 2, xj[i] + w, yj + h / 2)
     ax.set_title("The chain: per-station stages (blue) feed the two-station stages (green)")
     return ax
 
@@ -143,7 +147,7 @@ def frame_example(plan: NightPlan, index: int, seed: int = 0) -> dict:
     frame and the plate ``solution``.
     """
     from eotrack.astro.astrometry import catalog_in_field, wcs_from_camera
-    from eotrack.pipeline import Frame, measure_frame, separate_targets
+    from eotrack.pipeline import Frame, measure_frame, separate_targets, target_border_px
 
     from .pipeline import MATCH_PX, burst_catalogue, frame_id, pipeline_config, velocity_gate
 
@@ -167,7 +171,7 @@ def frame_example(plan: NightPlan, index: int, seed: int = 0) -> dict:
                    wcs_guess=wcs_from_camera(K, b.R_believed[k], (n, n)),
                    frame_id=frame_id(plan, b, k), sequence=f"v{b.visit}")
         meas.append(measure_frame(fr, catalog, config=pcfg))
-    cand = separate_targets(meas, radius_px=MATCH_PX)
+    cand = separate_targets(meas, radius_px=MATCH_PX, border_px=target_border_px(meas[0].frame, pcfg))
     m0 = meas[0]
     guess = wcs_from_camera(K, b.R_believed[0], (n, n))
     cat = catalog_in_field(guess, (n, n), max_mag=cfg.astrometry_limit, margin_px=20.0,
@@ -191,8 +195,10 @@ def plot_frame(example: dict, *, ax: plt.Axes | None = None) -> plt.Axes:
     ax.imshow(img, cmap="gray", vmin=lo, vmax=hi, origin="upper")
     xy, cat, cand = example["xy"], example["catalogue"], example["candidate"]
     mov = ~cat & ~cand
+    sol = example.get("solution")
+    fitted = f"; {sol.n_matched} of them in the plate fit" if sol is not None else ""
     ax.scatter(*xy[cat].T, s=28, facecolors="none", edgecolors=ON_IMAGE["star"], lw=0.7,
-               marker="o", label=f"matched to Gaia by the plate solution ({int(cat.sum())})")
+               marker="o", label=f"at a Gaia star of the solved plate ({int(cat.sum())}{fitted})")
     ax.scatter(*xy[mov].T, s=10, color=ON_IMAGE["candidate"], lw=0, marker="o", alpha=0.6,
                label=f"star: fixed on the sky in a neighbouring frame ({int(mov.sum())})")
     ax.scatter(*xy[cand].T, s=160, marker="s", facecolors="none",
@@ -274,9 +280,9 @@ def plot_triangulation(result: NightResult, *, ax: plt.Axes | None = None) -> pl
 
 def plot_prediction(prediction: pd.DataFrame, *, ax: plt.Axes | None = None) -> plt.Axes:
     """RMS prediction error through the eclipse per station/object: notebook 01's predictors on
-    the catalogue-correlated tracklets beside the orbit fit (linear axis from zero, so bar
-    lengths compare)."""
-    ax = _ax(ax, (5.6, 4.4))  # the legend goes beside it: the whole stays at the book's width
+    the catalogue-correlated tracklets beside the orbit fit (horizontal bars, one labelled row
+    per station and object; linear axis from zero, so bar lengths compare)."""
+    ax = _ax(ax, (6.4, 5.6))  # the legend goes below it: the whole stays at the book's width
     title = "Prediction through the eclipse: RMS error per station and object"
     sel = prediction
     if len(prediction) and "series" in prediction.columns:
@@ -290,26 +296,23 @@ def plot_prediction(prediction: pd.DataFrame, *, ax: plt.Axes | None = None) -> 
         return ax
     tab = sel.pivot_table(index=["station", "object"], columns="method", values="rms_arcsec")
     methods = [m for m, _ in _PRED if m in tab.columns]
-    x = np.arange(len(tab))
-    wd = 0.8 / len(methods)
+    # horizontal bars: one row per station and object, its label on one line beside it
+    # (ten vertical groups' two-line labels overlapped at the book's width)
+    y = np.arange(len(tab))[::-1]
+    ht = 0.8 / len(methods)
     for i, m in enumerate(methods):
         st = method_style("cauchy" if m == "orbit" else m)
-        ax.bar(x + (i - (len(methods) - 1) / 2) * wd, tab[m].fillna(0.0), wd,
-               label=_pred_name(m), **st.bar())
-    def tick(st: str, o: str) -> str:  # a cluster member's offsets on their own line
-        parts = o.split("+", 1) if "+" in o[5:] else o.split("-", 1)
-        lab = o if len(o) <= 6 or len(parts) < 2 else \
-            parts[0] + "\n" + o[len(parts[0]):]
-        return f"{st.split()[-1]}\n{lab}"   # the station by its state code (NM, HI)
-
-    ax.set_xticks(x, [tick(s, o) for s, o in tab.index], fontsize=9)
-    ax.set_ylim(0, None)
-    ax.grid(axis="x", visible=False)
+        ax.barh(y - (i - (len(methods) - 1) / 2) * ht, tab[m].fillna(0.0), ht,
+                label=_pred_name(m), **st.bar())
+    ax.set_yticks(y, [f"{s.split()[-1]} · {o}" for s, o in tab.index], fontsize=9)
+    ax.set_xlim(0, None)
+    ax.set_ylim(-0.6, len(tab) - 0.4)
+    ax.grid(axis="y", visible=False)
     codes = ", ".join(f"{s.split()[-1]} = {' '.join(s.split()[:-1])}"
                       for s in dict.fromkeys(st for st, _ in tab.index))
-    label_axes(ax, x=f"station ({codes}) and object", y="RMS error in umbra", yunit="″",
-               title=title)
-    legend_outside(ax, where="right")
+    label_axes(ax, y="station · object", x="RMS error in umbra", xunit="″",
+               title=f"{title}\n(stations: {codes})")
+    legend_outside(ax, where="below", ncol=2)
     return ax
 
 

@@ -39,6 +39,7 @@ from eotrack.imaging import (
 )
 from eotrack.montecarlo import TrialRunner
 from eotrack.tracking.initiation import ModifiedHoughInitiator
+from eotrack.validation import check_positive
 
 from .scenario import (
     ARCSEC_PER_RAD,
@@ -67,9 +68,12 @@ __all__ = [
     "expected_ray_sigma_px",
     "expected_recall",
     "frame_id",
+    "hypothesis_count_study",
+    "measured_epipolar_sigma_px",
     "noise_sweep",
     "observe_burst",
     "paired_orbit_curve",
+    "paired_series_rms",
     "pipeline_config",
     "predict_through_eclipse",
     "predicted_false_association",
@@ -80,6 +84,7 @@ __all__ = [
     "render_frame",
     "run_night",
     "scorecard",
+    "seed_stability",
     "sidereal_drift_px",
     "sigma_reconciliation",
     "sky_config",
@@ -324,7 +329,7 @@ def _rates_of(plan: NightPlan) -> tuple[np.ndarray, np.ndarray]:
     rates = np.zeros((len(cfg.stations), len(plan.names)))
     for s in range(len(cfg.stations)):
         for o in range(len(plan.names)):
-            d = plan.truth_direction(o, s, t)
+            d = plan.tle_direction(o, s, t)  # the TLE prediction: known before the night
             # into the Earth-fixed (staring mount) frame: undo the Earth's rotation about z
             a = -EARTH_RATE_RAD_S * t
             c, s_ = np.cos(a), np.sin(a)
@@ -383,7 +388,13 @@ def observe_burst(rng: np.random.Generator, plan: NightPlan) -> BurstResult:
     goes on with the others.
     """
     from eotrack.astro.astrometry import PlateSolveError, camera_from_wcs, wcs_from_camera
-    from eotrack.pipeline import Frame, initiate_tracks, measure_frame, separate_targets
+    from eotrack.pipeline import (
+        Frame,
+        initiate_tracks,
+        measure_frame,
+        separate_targets,
+        target_border_px,
+    )
     from eotrack.tracking.metrics import initiation_metrics
 
     b = plan.bursts[burst_index(rng)]
@@ -424,7 +435,9 @@ def observe_burst(rng: np.random.Generator, plan: NightPlan) -> BurstResult:
     t_det = np.zeros((n_o, nf), bool)
     t_kept = np.zeros((n_o, nf), bool)
     cams = {}
-    cand = separate_targets(measured, radius_px=MATCH_PX) if measured else []
+    cand = separate_targets(measured, radius_px=MATCH_PX,
+                            border_px=target_border_px(measured[0].frame, pcfg)) \
+        if measured else []
     for i, (k, m) in enumerate(zip(kept_k, measured)):
         d = m.xy
         sol = m.solution
@@ -446,7 +459,7 @@ def observe_burst(rng: np.random.Generator, plan: NightPlan) -> BurstResult:
     # catalogue correlation: each object's TLE-predicted pixel through the solved plate
     pred_xy = {}
     for k, m in zip(kept_k, measured):
-        dtle = np.stack([plan.truth_direction(o, b.station, b.times_s[k])[0] for o in b.objs])
+        dtle = np.stack([plan.tle_direction(o, b.station, b.times_s[k])[0] for o in b.objs])
         ra = np.degrees(np.arctan2(dtle[:, 1], dtle[:, 0])) % 360
         dec = np.degrees(np.arcsin(np.clip(dtle[:, 2], -1, 1)))
         pred_xy[int(k)] = m.solution.radec_to_pixel(ra, dec)
@@ -644,10 +657,15 @@ def predicted_false_association(plan: NightPlan, *, gate_px: float | None = None
                                 sigma_px: float = 0.3) -> pd.DataFrame:
     """The epipolar gate's false-association rate from its χ² bound, before any frame.
 
-    For every visit, station-0 object ``o`` and station-1 object ``o' ≠ o`` both seen in the
-    visit, the noise-free epipolar distance ``d₀`` of the wrong pairing (from the objects' TLE
-    predictions) and the probability that it falls inside the gate,
-    ``P(|d₀ + ε| < g)``, ``ε ~ N(0, σ_e²)``, ``σ_e = √2 σ`` — the gate's own noise model.
+    Only what a station knows is read: the schedule (each visit's first frame time), the
+    stations' positions, the objects' **TLE predictions** (:meth:`NightPlan.tle_direction`)
+    and their predicted Earth shadow (:meth:`NightPlan.tle_sunlit`) — no rendered pixel and
+    no truth array of the bursts. For every visit, station-0 object ``o`` and station-1
+    object ``o' ≠ o`` both predicted sunlit in the visit, the noise-free epipolar distance
+    ``d₀`` of the wrong pairing and the probability that it falls inside the gate,
+    ``P(|d₀ + ε| < g)``, ``ε ~ N(0, σ_e²)``, ``σ_e = √2 σ`` — the gate's own noise model
+    (``sigma_px`` per axis: the gate's 0.3 px, or one the chain measured,
+    :func:`measured_epipolar_sigma_px`).
 
     Returns
     -------
@@ -658,25 +676,27 @@ def predicted_false_association(plan: NightPlan, *, gate_px: float | None = None
         Gauss–Hermite quadrature) — what a nearest-first assignment would get wrong.
     """
     cfg = plan.config
+    sigma_px = check_positive(sigma_px, "sigma_px")
     gate = epipolar_gate_px(cfg, sigma_px=sigma_px) if gate_px is None else float(gate_px)
     se = np.sqrt(2.0) * sigma_px
     seen: dict[int, list[list]] = {}
     for b in plan.bursts:
-        for j, o in enumerate(b.objs):
-            if b.target_flux[j, 0] > 0:
+        t = float(b.times_s[0])
+        c = _station_at(plan, b.station, t)
+        for o in b.objs:
+            if plan.tle_sunlit(o, t):
                 seen.setdefault(b.visit, [[], []])[b.station].append(
-                    (o, b.c_km[0], b.target_gcrs_km[j, 0], len(b.objs) > 1))
+                    (o, c, plan.tle_direction(o, b.station, t)[0], len(b.objs) > 1))
     rows = []
     for v, (sa, sb) in sorted(seen.items()):
-        for o, ca, ra_, clus in sa:
+        for o, ca, ua, clus in sa:
             if not any(o2 == o for o2, *_ in sb):
                 continue
-            ua = _unit(ra_ - ca)
             p_none, p_keep = 1.0, 1.0
-            for o2, cb, rb_, _ in sb:
+            for o2, cb, ub, _ in sb:
                 if o2 == o:
                     continue
-                d0 = _epi_px(ca, ua, cb, _unit(rb_ - cb), cfg.focal_px)
+                d0 = _epi_px(ca, ua, cb, ub, cfg.focal_px)
                 p_in = norm.cdf((gate - d0) / se) - norm.cdf((-gate - d0) / se)
                 p_none *= 1.0 - p_in
                 # the wrong partner nearer than the true one: P(|d₀ + ε_w| < |ε_t|)
@@ -686,6 +706,19 @@ def predicted_false_association(plan: NightPlan, *, gate_px: float | None = None
                          "p_wrong_in_gate": 1.0 - p_none, "p_wrong_nearer": 1.0 - p_keep})
     return pd.DataFrame(rows, columns=["visit", "object", "cluster", "p_wrong_in_gate",
                                        "p_wrong_nearer"])
+
+
+def measured_epipolar_sigma_px(pairs: pd.DataFrame) -> float:
+    """Per-axis point error (px) the chain measures from its own associations, no truth:
+    ``RMS(d) / √2`` over the epipolar distances ``d`` of the unambiguous pairs (one
+    candidate inside the gate, ``n_in_gate == 1``; ``d`` holds both points' errors,
+    ``σ_e = √2 σ``). NaN without such pairs."""
+    if not isinstance(pairs, pd.DataFrame):
+        raise TypeError(f"pairs must be a DataFrame, got {type(pairs).__name__}")
+    if not len(pairs) or "epipolar_px" not in pairs:
+        return float("nan")
+    d = pairs.loc[pairs["n_in_gate"] == 1, "epipolar_px"].to_numpy(float)
+    return float(np.sqrt(np.mean(d ** 2)) / np.sqrt(2.0)) if len(d) else float("nan")
 
 
 #: Gauss–Hermite nodes and weights for expectations over a standard normal ε.
@@ -1373,6 +1406,98 @@ def predictor_isolation(night: NightResult, *, methods: tuple[str, ...] = PREDIC
     return pd.DataFrame(rows)
 
 
+def paired_series_rms(prediction: pd.DataFrame, method: str = "lsq",
+                      series: tuple[str, ...] = ("field", "catalogue", "confirmed")
+                      ) -> pd.DataFrame:
+    """A PAIRED comparison of the tracklet series: ``method``'s RMS error through the eclipse
+    (″) on the (station, object) cases that every one of ``series`` predicts, one column per
+    series, plus the RMS over those common cases (row ``"RMS (paired)"``). An RMS over each
+    series' own rows would compare different objects (a case that drops out of one series
+    moves its RMS)."""
+    if not isinstance(prediction, pd.DataFrame):
+        raise TypeError(f"prediction must be a DataFrame, got {type(prediction).__name__}")
+    sel = prediction[(prediction["method"] == method) & prediction["series"].isin(series)]
+    tab = sel.pivot_table(index=["station", "object"], columns="series", values="rms_arcsec")
+    tab = tab.reindex(columns=list(series)).dropna()
+    if len(tab):
+        tab.loc[("RMS (paired)", f"{len(tab)} cases"), :] = np.sqrt((tab ** 2).mean())
+    return tab
+
+
+def hypothesis_count_study(night: NightResult, *, n_hypotheses: tuple[int, ...] = (3, 100),
+                           fit_window_s: float = 7200.0, threshold_arcsec: float = 6.0
+                           ) -> pd.DataFrame:
+    """Why the RANSAC-type predictors can be far worse than least squares on CLEAN series.
+
+    On every (series, station, object) whose fitted tracklets are all the object's own
+    (scoring: ``n_wrong = 0``), RANSAC and WRANSAC are fitted with each number of minimal
+    samples U in ``n_hypotheses`` (the capstone uses notebook 01's paper value U = 3) and
+    scored like :func:`predict_through_eclipse`. Per row: points fitted, the RMS errors
+    through the eclipse (″) of LSQ and of each method and U, the worse of the two over LSQ,
+    ``ransac inliers U=…`` — the smallest fraction of the points (of the two coordinates) the
+    best RANSAC hypothesis kept for its least-squares refit (1: the refit IS least squares) —
+    and ``wransac weight U=…`` — the smallest mean refit weight ``1 − L_s`` of WRANSAC (1: its
+    refit is least squares). Few points (one per tracklet) on a 4-parameter
+    sinusoid-plus-drift: a minimal sample of 4 out of ≈ 8 is often ill-conditioned; with only
+    3 draws the best one may leave good points outside the 6″ threshold (RANSAC refits on
+    part of the window) or give them large residuals, hence small weights (WRANSAC refits
+    with weights that distort the fit).
+    """
+    from eotrack.experiments.wransac import fit_predict
+
+    plan, cfg = night.plan, night.plan.config
+    series = _tracklet_series(plan, night.bursts, night.pairs)
+    rows = []
+    for name in ("field", "catalogue", "confirmed"):
+        for (s, o), pts in sorted(series[name].items()):
+            umb = plan.grid_shadow[o] == 2
+            if not umb.any():
+                continue
+            t_in = plan.grid_s[np.argmax(umb)]
+            t_out = plan.grid_s[len(umb) - 1 - np.argmax(umb[::-1])]
+            tq = plan.grid_s[(plan.grid_s >= t_in) & (plan.grid_s <= t_out)]
+            tq = tq[_watch_mask(plan, s, o, tq)]
+            pts = sorted((p for p in pts if t_in - fit_window_s <= p[0] < t_in),
+                         key=lambda p: p[0])
+            if len(tq) == 0 or len(pts) < 6 or any(p[2] != o for p in pts):
+                continue
+            t = np.array([p[0] for p in pts])
+            if len(np.unique(t)) < len(t):
+                continue
+            ra, dec = _radec_arcsec(np.stack([p[1] for p in pts]))
+            row = {"series": name, "station": cfg.stations[s].name, "object": plan.names[o],
+                   "n_fit": len(t)}
+
+            def score(pr, pd_, ra=ra, dec=dec, o=o, s=s, tq=tq):
+                ra_p = (pr + ra[0]) / ARCSEC_PER_RAD
+                de_p = (pd_ + dec[0]) / ARCSEC_PER_RAD
+                v = np.stack([np.cos(de_p) * np.cos(ra_p), np.cos(de_p) * np.sin(ra_p),
+                              np.sin(de_p)], 1)
+                return float(np.sqrt(np.mean(_truth_err(plan, o, s, tq, v) ** 2)))
+
+            rng = np.random.default_rng(cfg.seed + 3)
+            row["lsq"] = score(fit_predict("lsq", t, ra - ra[0], tq, rng=rng),
+                               fit_predict("lsq", t, dec - dec[0], tq, rng=rng))
+            for u_ in n_hypotheses:
+                kept = []
+                for m in ("ransac", "wransac"):
+                    pr, fa = fit_predict(m, t, ra - ra[0], tq, rng=rng, n_hypotheses=u_,
+                                         threshold=threshold_arcsec, return_fit=True)
+                    pd_, fd = fit_predict(m, t, dec - dec[0], tq, rng=rng, n_hypotheses=u_,
+                                          threshold=threshold_arcsec, return_fit=True)
+                    row[f"{m} U={u_}"] = score(pr, pd_)
+                    if m == "ransac":
+                        kept += [fa.inliers.mean(), fd.inliers.mean()]
+                    else:
+                        wts = min(fa.weights.mean(), fd.weights.mean())
+                row[f"worst / lsq, U={u_}"] = max(row[f"ransac U={u_}"],
+                                                  row[f"wransac U={u_}"]) / row["lsq"]
+                row[f"ransac inliers U={u_}"] = float(min(kept))
+                row[f"wransac weight U={u_}"] = float(wts)
+            rows.append(row)
+    return pd.DataFrame(rows)
+
+
 def ray_error_split(night: NightResult) -> pd.DataFrame:
     """Per-ray angle error (RMS, ″) of the tracklet hits by true object and by light (sunlit
     or penumbra), with the hit counts — which part of the chain's per-ray error comes from
@@ -1417,14 +1542,31 @@ def expected_completeness(config: CapstoneConfig | None = None) -> float:
     return float(np.mean(norm.cdf(peak / noise - cfg.detect_sigma)))
 
 
-def expected_recall(config: CapstoneConfig | None = None) -> float:
-    """Expected initiation recall before the run: at least ``m = min(n, 4)`` of a burst's
-    ``n`` frames detected, each with :func:`expected_completeness` (independent frames)."""
-    from scipy.stats import binom
+def expected_recall(config: CapstoneConfig | None = None, *,
+                    completeness: float | None = None) -> float:
+    """Expected initiation recall before the run: the initiator's ``(m−1)/m`` confirmation
+    rule (``m = min(n, 4)``: 3 hits in some window of 4 consecutive frames of the burst's
+    ``n``) met, each frame detected independently with probability ``completeness`` (default
+    :func:`expected_completeness`). Exact sum over the ``2ⁿ`` detection patterns.
+
+    It can exceed the per-frame completeness (0.67 per frame gives 0.70 with n = 5): a
+    tracklet survives a missed frame. An earlier version required ``m`` of ``n`` frames (4 of
+    5), which is not the initiator's rule and gave a lower expectation.
+    """
+    import itertools
 
     cfg = _config(config)
-    m = min(cfg.burst_frames, 4)
-    return float(binom.sf(m - 1, cfg.burst_frames, expected_completeness(cfg)))
+    p = expected_completeness(cfg) if completeness is None else float(completeness)
+    if not 0.0 <= p <= 1.0:
+        raise ValueError(f"completeness must lie in [0, 1], got {completeness}")
+    n = cfg.burst_frames
+    m = min(n, 4)
+    total = 0.0
+    for pat in itertools.product((0, 1), repeat=n):
+        if any(sum(pat[i:i + m]) >= m - 1 for i in range(n - m + 1)):
+            k = sum(pat)
+            total += p ** k * (1.0 - p) ** (n - k)
+    return float(total)
 
 
 def scorecard(night: NightResult, *, same_on_cluster: bool | None = None,
@@ -1432,8 +1574,9 @@ def scorecard(night: NightResult, *, same_on_cluster: bool | None = None,
               ) -> pd.DataFrame:
     """Stage criteria stated before the run (from the configuration alone), and the verdicts.
 
-    Each row: the stage, the criterion with its expected value (computed from the settings —
-    S/N, CRLB, χ² bound, baseline — not from the run), the measured value and pass/fail.
+    Each row: a short ``key`` (the same for every seed, :func:`seed_stability`), the stage, the
+    criterion with its expected value (computed from the settings — S/N, CRLB, χ² bound,
+    baseline — not from the run), the measured value and pass/fail.
     """
     cfg = night.plan.config
     val = dict(zip(night.budget["metric"], night.budget["value"]))
@@ -1452,49 +1595,76 @@ def scorecard(night: NightResult, *, same_on_cluster: bool | None = None,
     pm = val["plate solution: its own error model at the objects (RMS)"]
     pt = val["plate solution: true error at the objects (RMS)"]
     rows = [
-        ("extraction", f"completeness ≥ S/N expectation {c_exp:.3f} − 0.10 (an allowance, fixed "
+        ("completeness", "extraction", f"completeness ≥ S/N expectation {c_exp:.3f} − 0.10 (an allowance, fixed "
          "before the run, for blends with stars and the field edge, which the S/N model omits)",
          val["target completeness (sunlit frames)"],
          val["target completeness (sunlit frames)"] >= c_exp - 0.10),
-        ("astrometry", "true plate error (RMS) within ×/÷ 1.5 of the solution's own error model "
+        ("plate error", "astrometry", "true plate error (RMS) within ×/÷ 1.5 of the solution's own error model "
          f"({pm:.3f}″)", pt, bool(np.isfinite(pm) and 1 / 1.5 <= pt / pm <= 1.5)),
-        ("initiation", f"recall ≥ 0.9 × expected {r_exp:.3f} (≥ m of n frames detected)",
+        ("recall", "initiation", f"recall ≥ 0.9 × expected {r_exp:.3f} (3 of 4 consecutive frames "
+         "detected)",
          val["recall (object-bursts with ≥ 3 sunlit frames)"],
          val["recall (object-bursts with ≥ 3 sunlit frames)"] >= 0.9 * r_exp),
-        ("triangulation", f"per-ray error (RMS) ≤ 1.5 × CRLB {ray_exp:.2f}″",
+        ("per-ray error", "triangulation", f"per-ray error (RMS) ≤ 1.5 × CRLB {ray_exp:.2f}″",
          val["per-ray angle error (RMS, tracklet hits)"],
          val["per-ray angle error (RMS, tracklet hits)"] <= 1.5 * ray_exp),
-        ("triangulation", f"RMS range error ≤ 1.5 × R²σ/B⊥ with the CRLB σ ({sr_crlb:.2f} km; R "
+        ("range error", "triangulation", f"RMS range error ≤ 1.5 × R²σ/B⊥ with the CRLB σ ({sr_crlb:.2f} km; R "
          "and B⊥ of the associated pairs)", val["RMS range error"],
          bool(np.isfinite(sr_crlb) and val["RMS range error"] <= 1.5 * sr_crlb)),
-        ("triangulation", "consistency check AFTER the run: RMS range error within ×/÷ 1.5 of "
+        ("range consistency", "triangulation", "consistency check AFTER the run: RMS range error within ×/÷ 1.5 of "
          f"R²σ_θ/B⊥ with the measured in-plane ray errors ({sg.get('measured_km', np.nan):.2f} "
          "km)", val["RMS range error"],
          bool(np.isfinite(sg.get("measured_km", np.nan))
               and 1 / 1.5 <= val["RMS range error"] / sg["measured_km"] <= 1.5)),
-        ("association", f"correct pairs, cluster field ≥ 1 − χ² expectation {p_w:.3f} (wrong "
+        ("cluster association", "association", f"correct pairs, cluster field ≥ 1 − χ² expectation {p_w:.3f} (wrong "
          f"partner nearer, the gate's σ) − 3 binomial σ over {n_cl} pairs ({slack:.3f})",
          val["correct pairs, cluster field"],
          val["correct pairs, cluster field"] >= 1 - p_w - slack),
     ]
     orb, cur = paired_orbit_curve(night.prediction)
-    rows.append(("prediction", "orbit RMS through the eclipse ≤ the best sinusoid predictor, "
+    rows.append(("orbit vs curve", "prediction", "orbit RMS through the eclipse ≤ the best sinusoid predictor, "
                  f"paired on the {len(orb)} station–object cases both predict (curve "
                  f"{_rms(cur):.2f}″)", _rms(orb), bool(len(orb) and _rms(orb) <= _rms(cur))))
     if night_wall_s is not None:
         import os
 
-        rows.append(("runtime", "whole night ≤ 120 s wall on this machine (load "
+        rows.append(("night wall time", "runtime", "whole night ≤ 120 s wall on this machine (load "
                      f"{os.getloadavg()[0]:.0f} on 2 cores at the end)", night_wall_s,
                      night_wall_s <= 120.0))
     if night_cpu_s is not None:
-        rows.append(("runtime", "whole night ≤ 120 s CPU (what an idle machine takes)",
+        rows.append(("night CPU time", "runtime", "whole night ≤ 120 s CPU (what an idle machine takes)",
                      night_cpu_s, night_cpu_s <= 120.0))
     if same_on_cluster is not None:
-        rows.append(("runtime", "serial == Dask LocalCluster (identical budget)",
+        rows.append(("serial == cluster", "runtime", "serial == Dask LocalCluster (identical budget)",
                      float(same_on_cluster), bool(same_on_cluster)))
-    return pd.DataFrame(rows, columns=["stage", "criterion (stated before the run)",
+    return pd.DataFrame(rows, columns=["key", "stage", "criterion (stated before the run)",
                                        "measured", "pass"])
+
+
+def seed_stability(scorecards: dict[int, pd.DataFrame]) -> pd.DataFrame:
+    """The scorecard over independent root seeds (``{seed: scorecard(...)}``, the criteria as
+    stated before the runs, unchanged): per criterion ``key``, the measured value and
+    pass/fail per seed, and ``passes`` = ``"k/K"`` — a criterion that passes on some seeds only
+    is **fragile**, as in the repro machinery's stability runs (``--seeds K``)."""
+    if not isinstance(scorecards, dict) or not scorecards:
+        raise ValueError("scorecards must be a non-empty {seed: scorecard} dict")
+    keys = list(dict.fromkeys(k for sc in scorecards.values() for k in sc["key"]))
+    rows = []
+    for k in keys:
+        row = {"key": k}
+        n_pass = 0
+        for sd, sc in scorecards.items():
+            hit = sc[sc["key"] == k]
+            if not len(hit):
+                row[f"seed {sd}"] = "—"
+                continue
+            ok = bool(hit["pass"].iloc[0])
+            n_pass += ok
+            row[f"seed {sd}"] = f"{hit['measured'].iloc[0]:.3g} {'✓' if ok else '✗'}"
+        n = sum(1 for sc in scorecards.values() if (sc["key"] == k).any())
+        row["passes"] = f"{n_pass}/{n}" + ("" if n_pass in (0, n) else " fragile")
+        rows.append(row)
+    return pd.DataFrame(rows).set_index("key")
 
 
 #: Sky levels (e⁻/px) of the noise sweep behind the widget.

@@ -497,6 +497,18 @@ class NightPlan:
         d = r - c
         return d / np.linalg.norm(d, axis=1, keepdims=True)
 
+    def tle_direction(self, obj: int, station: int, t_s: np.ndarray) -> np.ndarray:
+        """The station's TLE prediction of the object's unit topocentric direction ``(n, 3)``
+        — what the chain may use (catalogue correlation, the χ² association model). The
+        truth of this sky *is* the SGP4 propagation of the TLEs, so it equals
+        :meth:`truth_direction` here (errata); a real TLE is off by tens of arcseconds."""
+        return self.truth_direction(obj, station, t_s)
+
+    def tle_sunlit(self, obj: int, t_s: float) -> bool:
+        """The object is predicted outside the umbra at ``t_s`` (its TLE orbit and the Sun:
+        the shadow grid, nearest minute) — the station's own knowledge."""
+        return bool(np.round(np.interp(float(t_s), self.grid_s, self.grid_shadow[obj])) != 2)
+
 
 def _elevation(r_gcrs: np.ndarray, c_gcrs: np.ndarray) -> np.ndarray:
     up = c_gcrs / np.linalg.norm(c_gcrs, axis=-1, keepdims=True)
