@@ -2,18 +2,19 @@
 and a check that every public figure function is drawn by one of them. Figures the owners have
 not fixed yet are in ``xfail.py``, owner named.
 
-A REPORT figure is checked from its sidecar ``figures/<stem>.lint.json``, written by ``make
-repro`` beside the PNG (:func:`eotrack.repro.report.write_lint_sidecar`): the lint's verdict on
-the very Figure saved, and the SHA-256 of the PNG written — so what is checked is the committed
-PNG, and nothing is drawn here. A figure without a sidecar (its paper's repro predates them) is
-redrawn by a quick run of the paper as before (slow), and the test says so.
+A REPORT figure is checked from its sidecars, written by ``make repro`` beside the PNG
+(:func:`eotrack.repro.report.write_lint_sidecar`): ``figures/<stem>.fig.gz``, the pickled Figure
+saved, and ``<stem>.lint.json`` with the PNG's SHA-256. The figure is loaded, must render to
+exactly the committed PNG, and is linted with the current rules (no paper is run). Without the
+pickled figure the stored verdict counts only if the current lint version wrote it. A figure
+without any sidecar (its paper's repro predates them) is redrawn by a quick run of the paper
+as before (slow), and the test says so.
 """
 
 from __future__ import annotations
 
 import hashlib
 import json
-import warnings
 from pathlib import Path
 
 import pytest
@@ -70,23 +71,54 @@ def has_sidecars(slug: str) -> bool:
     return all(_sidecar(slug, s).is_file() for s in report_figure_stems(slug))
 
 
+def _render_sha(fig, dpi: int) -> str:
+    """SHA-256 of ``fig`` saved as ``write_report`` saves it (PNG, ``bbox_inches="tight"``)."""
+    import io
+
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", dpi=dpi, bbox_inches="tight")
+    return hashlib.sha256(buf.getvalue()).hexdigest()
+
+
 def sidecar_problems(side: Path, slug: str = "<slug>") -> list[tuple[str, str]]:
-    """The verdict stored beside the committed PNG, and whether it is that PNG's verdict."""
+    """The lint's verdict on the committed PNG, with the current rules.
+
+    With the pickled Figure beside it (``<stem>.fig.gz``, written by ``make repro``): the
+    figure is loaded, must render to exactly the committed PNG (else ``stale-figure``), and is
+    linted now — so neither a verdict of an older lint nor an edited sidecar can pass. Without
+    it, the stored verdict counts only if the current lint wrote it (else ``stale-sidecar``)."""
+    import gzip
+    import pickle
+
     stem = side.name.removesuffix(".lint.json")
     rec = json.loads(side.read_text(encoding="utf-8"))
     png = side.with_name(f"{stem}.png")
+    regen = f"regenerate the report (python -m eotrack.repro {slug})"
     missing = [k for k in ("png", "sha256", "problems") if k not in rec]
     if missing or rec["png"] != png.name:
         return [("bad-sidecar", f"{side.name} lacks {missing} or names another PNG "
-                 f"({rec.get('png')!r}): regenerate the report (python -m eotrack.repro {slug})")]
-    if rec.get("lint") != LINT_VERSION:  # not yet a failure: 26 sidecars predate the version
-        warnings.warn(f"{side.name}: verdict of another lint version ({rec.get('lint')}) than "
-                      f"{LINT_VERSION}; regenerate the report", stacklevel=1)
+                 f"({rec.get('png')!r}): {regen}")]
     sha = hashlib.sha256(png.read_bytes()).hexdigest()
+    pkl = side.with_name(f"{stem}.fig.gz")
+    if rec.get("figure") and pkl.is_file():
+        fig = pickle.loads(gzip.decompress(pkl.read_bytes()))
+        try:
+            drawn = _render_sha(fig, int(rec.get("dpi", 110)))
+            if drawn != sha:
+                return [("stale-figure", f"{pkl.name} does not render to the committed "
+                         f"{png.name} (sha256 {drawn[:12]}… vs {sha[:12]}…): {regen}")]
+            return [(p.rule, p.message) for p in lint_figure(fig)]
+        finally:
+            import matplotlib.pyplot as plt
+
+            plt.close(fig)
     if rec.get("sha256") != sha:
         return [("stale-sidecar", f"{side.name} was written for another {png.name} (sha256 "
-                 f"{str(rec.get('sha256'))[:12]}…, the committed PNG's is {sha[:12]}…): "
-                 f"regenerate the report (python -m eotrack.repro {slug})")]
+                 f"{str(rec.get('sha256'))[:12]}…, the committed PNG's is {sha[:12]}…): {regen}")]
+    if rec.get("lint") != LINT_VERSION:
+        return [("stale-sidecar", f"{side.name}: verdict of another lint version "
+                 f"({rec.get('lint')}, current {LINT_VERSION}) and no pickled figure to lint "
+                 f"again ({rec.get('figure_error', 'none written')}): {regen}")]
     return [(r, m) for r, m in rec.get("problems", [])]
 
 
@@ -164,19 +196,29 @@ def report_calls(slug: str, funcs: dict) -> set[str]:
 
 
 def test_sidecar_is_the_saved_figures_verdict(tmp_path):
-    """make repro's sidecar holds the lint's verdict on the Figure saved and the PNG's hash;
-    a PNG changed afterwards makes the sidecar stale."""
+    """make repro's sidecar holds the PNG's hash and the pickled Figure: the test lints that
+    figure again with the current rules; a PNG changed afterwards makes it stale, an edited
+    verdict changes nothing, and a verdict without the figure counts only if the current lint
+    wrote it."""
     import matplotlib.pyplot as plt
     from eotrack.repro.report import write_lint_sidecar
 
     fig, ax = plt.subplots()
     ax.plot([0, 1], [0, 1])
-    fig.savefig(tmp_path / "f.png")
+    fig.savefig(tmp_path / "f.png", dpi=110, bbox_inches="tight")
     side = write_lint_sidecar(fig, tmp_path / "f.png")
-    assert side.name == "f.lint.json"
+    assert side.name == "f.lint.json" and (tmp_path / "f.fig.gz").is_file()
+    assert {r for r, _ in sidecar_problems(side)} == {"axis-label", "title"}
+    rec = json.loads(side.read_text())
+    side.write_text(json.dumps({**rec, "problems": []}))  # a hand-edited verdict
     assert {r for r, _ in sidecar_problems(side)} == {"axis-label", "title"}
     ax.set(xlabel="time (s)", ylabel="height (m)", title="a line")
-    fig.savefig(tmp_path / "f.png")
-    assert [r for r, _ in sidecar_problems(side)] == ["stale-sidecar"]
+    fig.savefig(tmp_path / "f.png", dpi=110, bbox_inches="tight")
+    assert [r for r, _ in sidecar_problems(side)] == ["stale-figure"]
     write_lint_sidecar(fig, tmp_path / "f.png")
     assert sidecar_problems(side) == []
+    (tmp_path / "f.fig.gz").unlink()  # no figure: the stored verdict, if it is current
+    assert sidecar_problems(side) == []
+    rec = json.loads(side.read_text())
+    side.write_text(json.dumps({**rec, "lint": "0123456789ab"}))
+    assert [r for r, _ in sidecar_problems(side)] == ["stale-sidecar"]

@@ -368,3 +368,168 @@ def test_red_green_scatter_pairs():
     label_axes(ax, x="x", y="y", title="pairs")
     legend_outside(ax)
     assert "same-style" in _rules(fig)
+
+
+# --- rules of the second review (issue 23): each test fails on a bad figure, passes on a good one ---
+
+def test_raw_symbol_beside_mathtext():
+    fig, ax = _clean()
+    t = ax.text(2, 15, "P_D at P_FA = 0.01")
+    assert "raw-symbol" in _rules(fig)
+    t.set_text(r"$P_\mathrm{D}$ at $P_\mathrm{FA} = 0.01$")
+    assert "raw-symbol" not in _rules(fig)
+    ax.set_xlabel("time t_i (s)")
+    assert "raw-symbol" in _rules(fig)
+    ax.set_xlabel(r"time $t_i$ (s)")
+    ax.set_title("wransac_refit vs ransac")  # an identifier, not a symbol: not this rule
+    assert "raw-symbol" not in _rules(fig)
+
+
+def test_unlabelled_reference_line():
+    fig, ax = _clean()
+    ref = ax.axhline(12, color="0.4", ls="--")
+    assert "unlabelled-reference" in _rules(fig)
+    ax.text(9.5, 12.3, "27″ limit", ha="right", va="bottom")
+    assert "unlabelled-reference" not in _rules(fig)
+    fig, ax = _clean()
+    ax.plot([1, 10], [12, 12], color="0.4", ls=":")  # a dashed constant plotted as data
+    assert "unlabelled-reference" in _rules(fig)
+    fig, ax = _clean()
+    ref = ax.axvline(4, color="0.4", ls="--", label="eclipse start")
+    legend_outside(ax)
+    assert "unlabelled-reference" not in _rules(fig)
+    ref.set_label("_nolegend_")
+    legend_outside(ax)
+    assert "unlabelled-reference" in _rules(fig)
+    fig, ax = _clean()
+    ax.axhline(0, color="k", lw=0.8)  # the zero baseline needs no name
+    assert "unlabelled-reference" not in _rules(fig)
+
+
+def test_reference_lines_named_once():
+    """A ±bound pair is named by one label; a regular grid is not a reference line; one
+    grey style key names the dashed line of every series; a shared legend names the same
+    line in every panel."""
+    fig, ax = _clean()
+    ax.axhline(12, color="k", ls="--", lw=0.8, label="paper's ±12″")
+    ax.axhline(-12, color="k", ls="--", lw=0.8)
+    legend_outside(ax)
+    assert "unlabelled-reference" not in _rules(fig)
+    fig, ax = _clean()
+    for v in (2.0, 4.0, 6.0, 8.0):
+        ax.axvline(v, color="0.8", lw=0.8, ls="--")  # cell boundaries
+    assert "unlabelled-reference" not in _rules(fig)
+    ax.axvline(5.5, color="C3", ls=":")
+    assert "unlabelled-reference" in _rules(fig)
+    fig, ax = _clean()
+    for k, v in enumerate((5.0, 15.0)):
+        ax.plot([1, 10], [v + 1, v + 2], color=f"C{k}", label=f"L = {k}")
+        ax.axhline(v, color=f"C{k}", ls="--", lw=0.8)
+    assert "unlabelled-reference" in _rules(fig)
+    ax.plot([], [], color="0.3", ls="--", lw=0.8, label="dashed: analytic, same colour")
+    legend_outside(ax)
+    assert "unlabelled-reference" not in _rules(fig)
+    fig, (a, b) = plt.subplots(1, 2, figsize=(7, 3))
+    for k, ax in enumerate((a, b)):
+        ax.plot([0, 1], [0, 20], label="elevation" if k == 0 else None)
+        ax.axhline(10, color="0.3", ls=":", label="minimum elevation" if k == 0 else None)
+        label_axes(ax, x="time", xunit="h", y="elevation", yunit="°", title=f"station {k}")
+    legend_outside(fig, where="below")
+    assert "unlabelled-reference" not in _rules(fig)
+
+
+def _titled_pair(gap_px: float):
+    """Two panel titles ``gap_px`` apart horizontally (as notebook 04's ρ–θ panels)."""
+    fig, (a, b) = plt.subplots(1, 2, figsize=(6, 3))
+    for ax in (a, b):
+        label_axes(ax, x="x", y="y")
+        ax.set_yticks([0.2, 0.5])  # no tick label at the top, next to a title
+    ta = a.set_title("accumulator votes (paper)", loc="right")
+    tb = b.set_title("votes (ours)", loc="left")
+    fig.canvas.draw()
+    r = fig.canvas.get_renderer()
+    right = ta.get_window_extent(r).x1
+    left = tb.get_window_extent(r).x0
+    x_axes = b.transAxes.inverted().transform((left - (left - right) + gap_px, 0))[0]
+    tb.set_position((x_axes, 1.0))
+    return fig
+
+
+def test_touching_texts():
+    assert "touching-text" in _rules(_titled_pair(0.3))
+    assert "overlapping-text" not in _rules(_titled_pair(0.3))
+    assert "touching-text" not in _rules(_titled_pair(6.0))
+
+
+def test_text_over_markers():
+    fig, ax = _clean()
+    ax.plot([3, 6, 8], [4, 9, 14], "o", label="objects", **method_style("logic").scatter())
+    legend_outside(ax)
+    t = ax.text(6, 9, "O4", ha="center", va="center")
+    assert "text-over-markers" in _rules(fig)
+    t.set_position((6.4, 9.0))
+    t.set_ha("left")
+    t.set_x(6.6)
+    assert "text-over-markers" not in _rules(fig)
+    fig, ax = _clean()
+    ax.scatter([5.0], [5.0], label="target")
+    legend_outside(ax)
+    ax.annotate("O4", (5.0, 5.0), ha="center", va="center")
+    assert "text-over-markers" in _rules(fig)
+
+
+def test_hidden_series():
+    fig, ax = plt.subplots()
+    x = np.linspace(0, 10, 50)
+    ax.plot(x, np.sin(x), label="RANSAC", color="C1", lw=1.5, ls="-")
+    ax.plot(x, np.sin(x), label="ideal", color="k", lw=2.5, ls="-")  # on top: RANSAC gone
+    label_axes(ax, x="time", xunit="min", y="Dec", yunit="″", title="prediction")
+    legend_outside(ax)
+    assert "hidden-series" in _rules(fig)
+    fig, ax = plt.subplots()
+    ax.plot(x, np.sin(x), label="ideal", color="k", lw=2.5, ls="-")
+    ax.plot(x, np.sin(x), label="RANSAC", color="C1", lw=1.5, ls="--")  # on top: both seen
+    label_axes(ax, x="time", xunit="min", y="Dec", yunit="″", title="prediction")
+    legend_outside(ax)
+    assert "hidden-series" not in _rules(fig)
+    fig, ax = plt.subplots()  # a visibly different series under a thick line: not hidden
+    ax.plot(x, np.sin(x) + 0.3, label="RANSAC", color="C1", lw=1.5, ls="-")
+    ax.plot(x, np.sin(x), label="ideal", color="k", lw=2.5, ls="-")
+    label_axes(ax, x="time", xunit="min", y="Dec", yunit="″", title="prediction")
+    legend_outside(ax)
+    assert "hidden-series" not in _rules(fig)
+
+
+def test_colorbar_tick_labels():
+    fig, ax = plt.subplots()
+    im = ax.imshow(np.logspace(-4, -2, 64).reshape(8, 8))
+    label_axes(ax, x="x", xunit="px", y="y", yunit="px", title="rate")
+    cb = fig.colorbar(im, label="rate")
+    cb.ax.yaxis.set_major_formatter(plt.FormatStrFormatter("%.0e"))  # '2e-03', …
+    assert "colorbar-labels" in _rules(fig)
+    cb.ax.yaxis.set_major_formatter(plt.FuncFormatter(plain_number))
+    assert "colorbar-labels" not in _rules(fig)
+    from matplotlib.colors import LogNorm
+
+    fig, ax = plt.subplots()
+    im = ax.imshow(np.logspace(0, 0.6, 64).reshape(8, 8), norm=LogNorm())
+    label_axes(ax, x="x", xunit="px", y="y", yunit="px", title="gain")
+    fig.colorbar(im, label="gain")
+    assert "colorbar-labels" in _rules(fig)  # 2×10⁰, 3×10⁰ minor labels
+    from eotrack.plotting import log_axis as _log
+
+    fig2, ax2 = plt.subplots()
+    im = ax2.imshow(np.logspace(0, 0.6, 64).reshape(8, 8), norm=LogNorm())
+    label_axes(ax2, x="x", xunit="px", y="y", yunit="px", title="gain")
+    cb = fig2.colorbar(im, label="gain")
+    _log(cb.ax, "y")
+    assert "colorbar-labels" not in _rules(fig2)
+
+
+def test_colour_mapped_scatter_needs_a_colour_bar():
+    fig, ax = plt.subplots()
+    sc = ax.scatter([1, 2, 3], [1, 2, 3], c=[0.1, 0.5, 0.9], cmap="viridis")
+    label_axes(ax, x="x", xunit="px", y="y", yunit="px", title="detections by SNR")
+    assert "no-colorbar" in _rules(fig)
+    fig.colorbar(sc, label="SNR")
+    assert "no-colorbar" not in _rules(fig)

@@ -6,15 +6,15 @@ of its own), and that composite is what a reader sees. When a notebook is execut
 house style on (``setup_notebook()``), every figure it shows is linted in the kernel and the
 verdict is stored with the figure's output (``eotrack.plotting.LINT_MIMETYPE``, see
 :func:`eotrack.plotting.register_figure_descriptions`). This test reads those records from the
-stored ``.ipynb`` files: a figure with problems, or one stored without a record (executed before
-the lint was recorded), fails. Fix the figure, re-execute the notebook
+stored ``.ipynb`` files: a figure with problems, one stored without a record (executed before
+the lint was recorded), or one whose record another version of the lint wrote (``stale-lint``:
+the current rules were never applied to it) fails. Fix the figure, re-execute the notebook
 (``.ci/execute_notebooks.py``) and the record follows. Nothing is executed here.
 """
 
 from __future__ import annotations
 
 import json
-import warnings
 from pathlib import Path
 
 import pytest
@@ -63,6 +63,10 @@ def notebook_problems(path: Path) -> list[tuple[str, str, list[tuple[str, str]]]
         else:
             problems = [(r, f"cell {cell} ({text[:50] or 'figure'}): {m}")
                         for r, m in rec.get("problems", [])]
+            if rec.get("lint") != LINT_VERSION:
+                problems.append(("stale-lint", f"cell {cell} ({text[:50] or 'figure'}): "
+                                 f"verdict of another lint version ({rec.get('lint')}, current "
+                                 f"{LINT_VERSION}); re-execute the notebook"))
         rows.append((fid, owner, problems))
     return rows
 
@@ -77,12 +81,6 @@ def test_notebook_figures(path, request, lint_rows):
     if key in XFAIL:
         request.applymarker(pytest.mark.xfail(reason=f"not fixed yet, owner {XFAIL[key]}",
                                               strict=False))
-    stale = [k for k, (_, _, rec) in enumerate(figure_records(path), 1)
-             if rec is not None and rec.get("lint") != LINT_VERSION]
-    if stale:  # not yet a failure: most notebooks were stored before the version was recorded
-        warnings.warn(f"{key}: {len(stale)} of {len(rows)} stored figures carry the verdict of "
-                      f"another lint version than {LINT_VERSION} (re-execute the notebook)",
-                      stacklevel=1)
     bad = [(fid, p) for fid, _, probs in rows for p in probs]
     assert not bad, (f"{key} (owner {owner}): {len(bad)} problems in "
                      f"{len({f for f, _ in bad})} of {len(rows)} figures\n"

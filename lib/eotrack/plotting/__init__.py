@@ -38,9 +38,15 @@ covering data (lines, markers, bars, filled bands, error bars, patches, images),
 without a label, text under 8 pt at the book's width, a figure or panel without a title, two
 series with the same colour and style or with the same style in colours a deuteranope cannot
 tell apart (red vs green), colour-coded data without any key (lines, per-point scatter colours,
-bands, bars), tick labels like ``2×10⁰`` or ``1e−03``, a figure so wide that the book shows it
-below 80 % of its size. ``tests/figures/`` runs
-it on every public figure function of the library.
+bands, bars), tick labels like ``2×10⁰`` or ``1e−03`` (on colour bars too), a figure so wide
+that the book shows it below 80 % of its size; and texts that touch (less than 1 px apart), a
+symbol's subscript written as plain text (``P_D``, ``t_i`` outside ``$…$``), a reference line
+(``axhline``/``axvline``, a dashed constant) with no legend entry and no text beside it, a text
+drawn over data markers, a series hidden under another one drawn later, a colour-mapped scatter
+without a colour bar. ``tests/figures/`` runs it on every public figure function of the library,
+on every REPORT figure (re-linted from the pickled figure ``make repro`` stores beside its PNG)
+and on every figure the notebooks store (the kernel's verdict, which must be of the current
+lint version).
 """
 
 from __future__ import annotations

@@ -21,7 +21,7 @@ from matplotlib.image import AxesImage
 from matplotlib.legend import Legend
 from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
-from matplotlib.text import Text
+from matplotlib.text import Annotation, Text
 
 from .style import BOOK_WIDTH_IN, MIN_FONT_PT
 
@@ -40,8 +40,13 @@ def _lint_version() -> str:
 LINT_VERSION = _lint_version()
 
 #: The lint's rules, in the order they are checked.
-RULES = ("overlapping-text", "clipped-text", "legend-covers-data", "axis-label", "small-text", "title",
-         "same-style", "unkeyed-colours", "log-labels", "too-wide")
+RULES = ("overlapping-text", "touching-text", "clipped-text", "legend-covers-data", "axis-label",
+         "small-text", "title", "same-style", "unkeyed-colours", "log-labels", "colorbar-labels",
+         "no-colorbar", "raw-symbol", "unlabelled-reference", "text-over-markers",
+         "hidden-series", "too-wide")
+
+#: Texts closer than this (display px, at the figure's dpi) touch: they read as one string.
+TOUCH_PX = 1.0
 
 #: A figure is shown at no less than this share of its size in the book (the browser shrinks a
 #: wider one to the column).
@@ -179,23 +184,32 @@ def _overlap(p: np.ndarray, q: np.ndarray, tol: float = 1.0) -> bool:
 
 
 def _check_overlaps(lines: list[_Line]) -> list[FigureProblem]:
-    """Lines of two different texts whose rectangles overlap (each pair of texts once)."""
+    """Lines of two different texts whose rectangles overlap (``overlapping-text``) or are
+    less than :data:`TOUCH_PX` apart (``touching-text``: two panel titles, two tick labels
+    that run into one string); each pair of texts once."""
     if len(lines) < 2:
         return []
     rects = np.array([ln.rect for ln in lines])
     lo, hi = rects.min(axis=1), rects.max(axis=1)
     owner = np.array([id(ln.text) for ln in lines])
     out, seen = [], set()
+    g = TOUCH_PX
     for i in range(len(lines) - 1):
-        cand = np.nonzero((lo[i + 1:, 0] < hi[i, 0] - 1) & (hi[i + 1:, 0] > lo[i, 0] + 1)
-                          & (lo[i + 1:, 1] < hi[i, 1] - 1) & (hi[i + 1:, 1] > lo[i, 1] + 1)
+        cand = np.nonzero((lo[i + 1:, 0] < hi[i, 0] + g) & (hi[i + 1:, 0] > lo[i, 0] - g)
+                          & (lo[i + 1:, 1] < hi[i, 1] + g) & (hi[i + 1:, 1] > lo[i, 1] - g)
                           & (owner[i + 1:] != owner[i]))[0] + i + 1
         for j in cand:
             pair = (min(owner[i], owner[j]), max(owner[i], owner[j]))
-            if pair in seen or not _overlap(rects[i], rects[j]):
+            if pair in seen:
+                continue
+            if _overlap(rects[i], rects[j]):
+                rule, verb = "overlapping-text", "overlaps"
+            elif _overlap(rects[i], rects[j], tol=-g):
+                rule, verb = "touching-text", f"touches (gap < {g:g} px)"
+            else:
                 continue
             seen.add(pair)
-            out.append(FigureProblem("overlapping-text", f"{_describe_line(lines[i])} overlaps "
+            out.append(FigureProblem(rule, f"{_describe_line(lines[i])} {verb} "
                                      f"{_describe_line(lines[j])}"))
     return out
 
@@ -628,6 +642,381 @@ def _check_width(fig: Figure, renderer: Any) -> list[FigureProblem]:
     return []
 
 
+# --- rules of the second review (issue 23): raw symbols, reference lines, text over markers,
+# hidden series, colour bars ---
+
+_GREEK = ("alpha|beta|gamma|delta|epsilon|zeta|eta|theta|iota|kappa|lambda|mu|nu|xi|pi|rho|"
+          "sigma|tau|upsilon|phi|chi|psi|omega")
+#: A symbol with an underscore subscript written as plain text (``P_D``, ``t_i``, ``x_c``,
+#: ``sigma_px``): matplotlib prints the underscore; in mathtext it is a subscript.
+_RAW_SUBSCRIPT = re.compile(rf"(?<![A-Za-z0-9_\\\u0391-\u03c9])(?:[A-Za-z\u0391-\u03c9]{{1,3}}|(?i:{_GREEK}))_"
+                            rf"(?:\{{[^}}]*\}}|[A-Za-z0-9]+)")
+_DOLLAR = re.compile(r"(?<!\\)\$")
+
+
+def _plain_parts(s: str) -> list[str]:
+    """The parts of a text that matplotlib prints literally: all of it unless it holds an even
+    number (≥ 2) of unescaped ``$``, else the parts outside ``$…$``."""
+    parts = _DOLLAR.split(s)
+    if len(parts) < 3 or len(parts) % 2 == 0:
+        return [s]
+    return parts[0::2]
+
+
+def _check_raw_symbols(texts: list[Text]) -> list[FigureProblem]:
+    """Text with a symbol's underscore subscript outside ``$…$`` (``P_FA`` beside
+    ``$P_\\mathrm{FA}$``): the reader sees the underscore."""
+    out = []
+    for t in texts:
+        hits = [m.group(0) for part in _plain_parts(t.get_text())
+                for m in _RAW_SUBSCRIPT.finditer(part)]
+        if hits:
+            out.append(FigureProblem("raw-symbol", f"{_describe(t)} writes {hits[0]!r} as plain "
+                                     f"text; write it in mathtext (e.g. r'$P_\\mathrm{{D}}$')"))
+    return out
+
+
+def _legend_labels(fig: Figure) -> set[str]:
+    legends = [a.get_legend() for a in fig.axes if a.get_legend() is not None] + list(fig.legends)
+    return {t.get_text() for lg in legends if lg.get_visible() for t in lg.get_texts()}
+
+
+def _legend_keys(fig: Figure) -> tuple[set, set]:
+    """``(colours, neutral styles)`` of the figure's legend entries that are lines: the
+    colours the legends name, and the line styles a grey or black entry names (a style key
+    such as "dashed: analytic bound")."""
+    legends = [a.get_legend() for a in fig.axes if a.get_legend() is not None] + list(fig.legends)
+    colours, styles = set(), set()
+    for lg in legends:
+        if not lg.get_visible():
+            continue
+        for h in lg.legend_handles:
+            if not isinstance(h, Line2D) or h.get_linestyle() in ("None", "none", "", " "):
+                continue
+            col = _c(h.get_color())
+            colours.add(col)
+            if col is not None and _hue_key(h.get_color()) is None:
+                styles.add(str(h.get_linestyle()))
+    return colours, styles
+
+
+def _is_solid(ls: Any) -> bool:
+    return ls in ("-", "solid")
+
+
+def _constant_line(line: Line2D) -> tuple[str, float] | None:
+    """``("h", y)`` / ``("v", x)`` for a straight horizontal / vertical line (``axhline``,
+    ``axvline``, or ``plot`` of a constant), else ``None``."""
+    x = np.asarray(line.get_xdata(orig=False), dtype=float)
+    y = np.asarray(line.get_ydata(orig=False), dtype=float)
+    ok = np.isfinite(x) & np.isfinite(y)
+    x, y = x[ok], y[ok]
+    if len(x) < 2 or line.get_linestyle() in ("None", "none", "", " ") or line.get_linewidth() <= 0:
+        return None
+    if np.ptp(y) == 0 and np.ptp(x) > 0:
+        return ("h", float(y[0]))
+    if np.ptp(x) == 0 and np.ptp(y) > 0:
+        return ("v", float(x[0]))
+    return None
+
+
+def _check_reference_lines(fig: Figure, lines: list[_Line], renderer: Any) -> list[FigureProblem]:
+    """A reference line nobody named: an ``axhline``/``axvline`` (a solid one at 0, the axis'
+    own baseline, excepted) or a dashed/dotted constant line, with no legend entry and no text
+    within 25 px of it (a direct label or an annotation). Lines of one look (orientation,
+    colour, style, width) count as one: a ±27″ pair is named when one of them is; three or
+    more of one look at equal spacing are a grid (cell boundaries), not reference lines. A
+    line in a series' colour is named by a grey style key of its line style in a legend
+    ("dashed: analytic value", one entry for the dashed line of every series). A look named in
+    one panel is named in every panel (one legend shared by the panels)."""
+    shown = _legend_labels(fig)
+    key_colours, key_styles = _legend_keys(fig)
+    panels: list[tuple[int, dict[tuple, list[tuple[float, bool]]]]] = []
+    for i, ax in enumerate(_data_axes(fig)):
+        if hasattr(ax, "zaxis"):
+            continue
+        notes = [ln for ln in lines if (ln.text.axes is ax and ln.text in ax.texts)
+                 or ln.text in fig.texts]
+        abb = ax.get_window_extent(renderer)
+        groups: dict[tuple, list[tuple[float, bool]]] = {}
+        for line in ax.get_lines():
+            if not line.get_visible() or to_rgba(line.get_color(), line.get_alpha())[3] == 0:
+                continue
+            const = _constant_line(line)
+            if const is None:
+                continue
+            axline = line.get_transform() != ax.transData
+            solid = _is_solid(line.get_linestyle())
+            if not axline and solid:
+                continue  # a flat data series, not a reference line
+            if axline and solid and const[1] == 0:
+                continue  # the zero baseline
+            pts = line.get_transform().transform(np.column_stack(
+                [line.get_xdata(orig=False), line.get_ydata(orig=False)]).astype(float))
+            pts = pts[np.all(np.isfinite(pts), axis=1)]
+            if not len(pts):
+                continue
+            lo = np.maximum(pts.min(axis=0), [abb.x0, abb.y0])
+            hi = np.minimum(pts.max(axis=0), [abb.x1, abb.y1])
+            if np.any(hi < lo - 0.5):
+                continue  # outside the view
+            named = ((not line.get_label().startswith("_") and line.get_label() in shown)
+                     or (str(line.get_linestyle()) in key_styles
+                         and _c(line.get_color()) in key_colours
+                         and _hue_key(line.get_color()) is not None))
+            along, across = (0, 1) if const[0] == "h" else (1, 0)
+            for ln in [] if named else notes:
+                r0, r1 = ln.rect.min(axis=0), ln.rect.max(axis=0)
+                gap = max(0.0, r0[across] - hi[across], lo[across] - r1[across])
+                if gap <= 25 and r1[along] >= lo[along] - 25 and r0[along] <= hi[along] + 25:
+                    named = True
+                    break
+                if isinstance(ln.text, Annotation) and ln.text.arrow_patch is not None:
+                    xy = ln.text._get_xy_display()
+                    if (abs(xy[across] - lo[across]) <= 5
+                            and lo[along] - 5 <= xy[along] <= hi[along] + 5):
+                        named = True
+                        break
+            key = (const[0], _c(line.get_color()), str(line.get_linestyle()),
+                   round(float(line.get_linewidth()), 2))
+            groups.setdefault(key, []).append((const[1], named))
+        panels.append((i, groups))
+    # a look named in one panel names it in every panel (one legend shared by the panels)
+    named_looks = {k for _, g in panels for k, m in g.items() if any(n for _, n in m)}
+    out = []
+    for i, groups in panels:
+        for key, members in groups.items():
+            if key in named_looks:
+                continue
+            vals = np.sort([v for v, _ in members])
+            if len(vals) >= 3 and np.ptp(np.diff(vals)) <= 1e-6 * max(1.0, np.ptp(vals)):
+                continue  # a grid
+            where = "y" if key[0] == "h" else "x"
+            for v in vals:
+                out.append(FigureProblem(
+                    "unlabelled-reference", f"panel {i + 1}: the reference line at {where} = "
+                    f"{v:.4g} has no legend entry and no text beside it"))
+    return out
+
+
+def _marker_points(line: Line2D) -> np.ndarray:
+    mk = line.get_marker()
+    if mk in (None, "None", "none", " ", "") or line.get_markersize() <= 0:
+        return np.empty((0, 2))
+    xy = np.column_stack([np.asarray(line.get_xdata(orig=False), dtype=float),
+                          np.asarray(line.get_ydata(orig=False), dtype=float)])
+    pts = line.get_transform().transform(xy) if len(xy) else np.empty((0, 2))
+    return pts[np.all(np.isfinite(pts), axis=1)]
+
+
+def _ink_rect(ln: _Line, renderer: Any) -> np.ndarray:
+    """The line's rectangle without its leading and trailing spaces (``"  GEO5"`` beside a
+    marker does not cover it)."""
+    s = ln.line
+    lead, trail = len(s) - len(s.lstrip(" ")), len(s) - len(s.rstrip(" "))
+    if not (lead or trail) or not s.strip():
+        return ln.rect
+    prop = ln.text.get_fontproperties()
+    def width(t: str) -> float:
+        return renderer.get_text_width_height_descent(t, prop, ismath=False)[0]
+
+    w_sp = max(0.0, width("x x") - width("xx"))  # one space's advance
+    u = ln.rect[1] - ln.rect[0]
+    n = np.hypot(*u)
+    if n == 0:
+        return ln.rect
+    u = u / n
+    a, b = u * min(lead * w_sp, n / 2), u * min(trail * w_sp, n / 2)
+    return np.array([ln.rect[0] + a, ln.rect[1] - b, ln.rect[2] - b, ln.rect[3] + a])
+
+
+def _check_text_over_markers(fig: Figure, lines: list[_Line], renderer: Any) -> list[FigureProblem]:
+    """A text (label, annotation) drawn over data markers: a marker of a line or a scatter
+    whose centre lies inside the text's rectangle (spaces at its ends left out) widened by half
+    the marker's radius — the text hides at least half of it. 3-D axes too: their markers and
+    texts are compared as projected in the draw."""
+    px = fig.dpi / 72.0
+    out = []
+    for i, ax in enumerate(_data_axes(fig)):
+        notes = [ln for ln in lines if ln.text in ax.texts]
+        if not notes:
+            continue
+        abb = ax.get_window_extent(renderer)
+        sets: list[tuple[str, np.ndarray, np.ndarray]] = []
+        for line in ax.get_lines():
+            if line.get_visible():
+                pts = _marker_points(line)
+                sets.append((line.get_label(), pts,
+                             np.full(len(pts), line.get_markersize() * px / 2)))
+        for col in ax.collections:
+            if col.get_visible() and isinstance(col, PathCollection) and len(col.get_offsets()):
+                pts = np.asarray(col.get_offset_transform().transform(col.get_offsets()),
+                                 dtype=float)
+                sz = np.asarray(col.get_sizes(), dtype=float)
+                r = np.sqrt(np.resize(sz if len(sz) else [36.0], len(pts))) / 2 * px
+                sets.append((col.get_label(), pts, r))
+        rects = [(ln, _ink_rect(ln, renderer)) for ln in notes]
+        for name, pts, r in sets:
+            if not len(pts):
+                continue
+            keep = ((pts[:, 0] >= abb.x0) & (pts[:, 0] <= abb.x1)
+                    & (pts[:, 1] >= abb.y0) & (pts[:, 1] <= abb.y1))
+            pts, r = pts[keep], r[keep]
+            for ln, rect in rects:
+                r0, r1 = rect.min(axis=0), rect.max(axis=0)
+                grow = (r / 2 - 1.0)[:, None]
+                inside = np.all((pts >= r0 - grow) & (pts <= r1 + grow), axis=1)
+                if inside.any():
+                    nm = "unlabelled" if name.startswith("_") else repr(name)
+                    out.append(FigureProblem(
+                        "text-over-markers", f"panel {i + 1}: {_describe_line(ln)} is drawn "
+                        f"over {int(inside.sum())} marker(s) of {nm}"))
+                    break
+    return out
+
+
+def _sample_path(pts: np.ndarray, step: float = 1.0, cap: int = 40_000) -> np.ndarray:
+    """Points every ``step`` px along a polyline (NaN vertices break it)."""
+    if len(pts) < 2:
+        return pts[np.all(np.isfinite(pts), axis=1)]
+    a, b = pts[:-1], pts[1:]
+    ok = np.all(np.isfinite(a), axis=1) & np.all(np.isfinite(b), axis=1)
+    a, b = a[ok], b[ok]
+    if not len(a):
+        return np.empty((0, 2))
+    n = np.clip(np.ceil(np.hypot(*(b - a).T) / step).astype(int), 1, 2000)
+    if n.sum() > cap:
+        n = np.maximum(1, (n * cap / n.sum()).astype(int))
+    idx = np.repeat(np.arange(len(a)), n)
+    frac = (np.arange(idx.size) - np.repeat(np.cumsum(n) - n, n)) / np.repeat(n, n)
+    return np.vstack([a[idx] + (b - a)[idx] * frac[:, None], b[-1:]])
+
+
+def _check_hidden_series(fig: Figure, renderer: Any) -> list[FigureProblem]:
+    """A line or marker series drawn entirely under another one (a result equal to the ideal
+    curve, drawn first): every drawn point of it lies under the later series' solid line or
+    filled markers, so the reader cannot see it."""
+    from scipy.spatial import cKDTree
+
+    px = fig.dpi / 72.0
+    out = []
+    for i, ax in enumerate(_data_axes(fig)):
+        if hasattr(ax, "zaxis"):
+            continue
+        abb = ax.get_window_extent(renderer)
+        order = sorted(enumerate(ax.get_lines()), key=lambda t: (t[1].get_zorder(), t[0]))
+        info = []
+        for _, line in order:
+            if not line.get_visible() or to_rgba(line.get_color(), line.get_alpha())[3] == 0:
+                info.append(None)
+                continue
+            tp = line.get_transform().transform_path(line.get_path()).vertices
+            has_line = (line.get_linestyle() not in ("None", "none", "", " ")
+                        and line.get_linewidth() > 0)
+            mk = _marker_points(line)
+            path = _sample_path(tp) if has_line else np.empty((0, 2))
+            own = np.vstack([path, mk]) if len(mk) else path
+            own = own[(own[:, 0] >= abb.x0 - 1) & (own[:, 0] <= abb.x1 + 1)
+                      & (own[:, 1] >= abb.y0 - 1) & (own[:, 1] <= abb.y1 + 1)]
+            reach = max(line.get_linewidth() * px / 2 if has_line else 0.0,
+                        line.get_markersize() * px / 2 if len(mk) else 0.0)
+            alpha = to_rgba(line.get_color(), line.get_alpha())[3]
+            opaque = alpha >= 0.9
+            cover_line = (line.get_linewidth() * px / 2
+                          if has_line and _is_solid(line.get_linestyle()) and opaque else None)
+            mfc = line.get_markerfacecolor()
+            filled = not (isinstance(mfc, str) and mfc.lower() == "none") and \
+                to_rgba(mfc)[3] >= 0.9 and opaque
+            cover_mk = line.get_markersize() * px / 2 if len(mk) and filled else None
+            cover = max(cover_line or 0.0, cover_mk or 0.0)
+            box = (np.vstack([path, mk]) if len(mk) else path)
+            box = (box.min(axis=0) - cover, box.max(axis=0) + cover) if len(box) else None
+            info.append({"line": line, "own": own, "reach": reach, "path": path, "mk": mk,
+                         "cover_line": cover_line, "cover_mk": cover_mk, "box": box})
+        trees: dict[int, tuple] = {}
+        for a in range(len(info)):
+            lo = info[a]
+            if lo is None or not len(lo["own"]):
+                continue
+            for b in range(a + 1, len(info)):
+                up = info[b]
+                if up is None or (up["cover_line"] is None and up["cover_mk"] is None):
+                    continue
+                if up["box"] is None or np.any(lo["own"].min(axis=0) < up["box"][0] - 0.5) \
+                        or np.any(lo["own"].max(axis=0) > up["box"][1] + 0.5):
+                    continue  # not inside the later series' reach: cannot be covered
+                if b not in trees:
+                    trees[b] = (cKDTree(up["path"]) if up["cover_line"] is not None
+                                and len(up["path"]) else None,
+                                cKDTree(up["mk"]) if up["cover_mk"] is not None
+                                and len(up["mk"]) else None)
+                slack = np.full(len(lo["own"]), np.inf)
+                tl, tm = trees[b]
+                if tl is not None:
+                    slack = np.minimum(slack, tl.query(lo["own"])[0] - up["cover_line"])
+                if tm is not None:
+                    slack = np.minimum(slack, tm.query(lo["own"])[0] - up["cover_mk"])
+                if np.all(slack + lo["reach"] <= 0.5):
+                    n1, n2 = lo["line"].get_label(), up["line"].get_label()
+                    n1 = "an unlabelled series" if n1.startswith("_") else repr(n1)
+                    n2 = "an unlabelled series" if n2.startswith("_") else repr(n2)
+                    out.append(FigureProblem(
+                        "hidden-series", f"panel {i + 1}: {n1} is hidden under {n2} (drawn "
+                        f"later); draw it on top dashed, offset it, or say so in its label"))
+                    break
+    return out
+
+
+def _check_colorbar_labels(fig: Figure) -> list[FigureProblem]:
+    """Colour-bar tick labels (or offset text) like ``1e−03`` or ``2×10⁰``."""
+    out = []
+    for ax in fig.axes:
+        if not _is_colorbar(ax) or not ax.get_visible():
+            continue
+        for axis in (ax.xaxis, ax.yaxis):
+            texts = [t.get_text() for t in axis.get_ticklabels(minor=True)
+                     + axis.get_ticklabels(minor=False) if t.get_visible()]
+            off = axis.get_offset_text()
+            texts += [off.get_text()] if off.get_visible() else []
+            bad = [s for s in texts if _E_NOTATION.search(s) or (
+                axis.get_scale() == "log" and ("times" in s or "×" in s))]
+            if bad:
+                lab = axis.get_label().get_text() or "unlabelled"
+                out.append(FigureProblem("colorbar-labels", f"colour bar {lab!r}: tick labels "
+                                         f"like {bad[0]!r}; use plain numbers or 10^k "
+                                         f"(eotrack.plotting.plain_number)"))
+                break
+    return out
+
+
+def _check_colour_mapped(fig: Figure) -> list[FigureProblem]:
+    """A colour-mapped scatter or line collection (``c=values``) with no colour bar for its
+    colour map and range: the colours cannot be read."""
+    from matplotlib.collections import LineCollection
+
+    bars = [a._colorbar.mappable for a in fig.axes
+            if _is_colorbar(a) and getattr(a, "_colorbar", None) is not None]
+    out = []
+    for i, ax in enumerate(_data_axes(fig)):
+        for col in ax.collections:
+            if not col.get_visible() or not isinstance(col, PathCollection | LineCollection):
+                continue
+            arr = col.get_array()
+            if arr is None or len(np.unique(np.asarray(arr, dtype=float)[
+                    np.isfinite(np.asarray(arr, dtype=float))])) < 2:
+                continue
+            if any(m is col or (m.get_cmap().name == col.get_cmap().name
+                                and m.norm.vmin == col.norm.vmin and m.norm.vmax == col.norm.vmax)
+                   for m in bars):
+                continue
+            nm = col.get_label()
+            nm = "" if nm.startswith("_") else f" {nm!r}"
+            out.append(FigureProblem("no-colorbar", f"panel {i + 1}: a colour-mapped "
+                                     f"{'scatter' if isinstance(col, PathCollection) else 'line set'}"
+                                     f"{nm} has no colour bar"))
+    return out
+
+
 def lint_figure(fig: Any, *, rules: tuple[str, ...] = RULES) -> list[FigureProblem]:
     """Draw ``fig`` and return its readability problems (empty list: it passes).
 
@@ -656,8 +1045,12 @@ def lint_figure(fig: Any, *, rules: tuple[str, ...] = RULES) -> list[FigureProbl
     renderer, texts, lines = _draw_recording(fig)
     scale = effective_font_scale(fig, renderer)
     problems: list[FigureProblem] = []
+    text_pairs: list[FigureProblem] = []
+    if {"overlapping-text", "touching-text"} & set(rules):
+        text_pairs = _check_overlaps(lines)
     checks = {
-        "overlapping-text": lambda: _check_overlaps(lines),
+        "overlapping-text": lambda: [p for p in text_pairs if p.rule == "overlapping-text"],
+        "touching-text": lambda: [p for p in text_pairs if p.rule == "touching-text"],
         "clipped-text": lambda: _check_clipped(fig, lines, renderer),
         "legend-covers-data": lambda: _check_legends(fig, renderer),
         "axis-label": lambda: _check_labels(fig),
@@ -666,6 +1059,12 @@ def lint_figure(fig: Any, *, rules: tuple[str, ...] = RULES) -> list[FigureProbl
         "same-style": lambda: _check_same_style(fig),
         "unkeyed-colours": lambda: _check_unkeyed(fig, texts),
         "log-labels": lambda: _check_log_labels(fig),
+        "colorbar-labels": lambda: _check_colorbar_labels(fig),
+        "no-colorbar": lambda: _check_colour_mapped(fig),
+        "raw-symbol": lambda: _check_raw_symbols(texts),
+        "unlabelled-reference": lambda: _check_reference_lines(fig, lines, renderer),
+        "text-over-markers": lambda: _check_text_over_markers(fig, lines, renderer),
+        "hidden-series": lambda: _check_hidden_series(fig, renderer),
         "too-wide": lambda: _check_width(fig, renderer),
     }
     for r in RULES:

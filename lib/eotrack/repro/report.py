@@ -128,23 +128,37 @@ def _history_lines(claims: dict[str, Claim]) -> list[str]:
     return out
 
 
-def write_lint_sidecar(fig: Any, png: str | os.PathLike[str]) -> Path:
-    """Beside a saved figure ``<name>.png`` write ``<name>.lint.json``: the figure lint's
-    verdict on that very Figure object and the SHA-256 of the PNG written, so the lint test
-    checks the committed PNG without drawing it again (issue 23).
+def write_lint_sidecar(fig: Any, png: str | os.PathLike[str], *, dpi: int = 110) -> Path:
+    """Beside a saved figure ``<name>.png`` write ``<name>.lint.json`` and ``<name>.fig.gz``
+    (issue 23): the figure lint's verdict on that very Figure object, the SHA-256 of the PNG
+    written and the pickled Figure itself (gzip), so the lint test re-lints the committed PNG's
+    figure with the current rules — checking first that it renders to that PNG — without
+    running the paper again. A figure that cannot be pickled keeps only the verdict.
 
     Returns
     -------
     pathlib.Path
         The sidecar's path.
     """
+    import gzip
     import hashlib
+    import pickle
 
     from eotrack.plotting import figure_lint_record
 
     png = Path(png)
-    rec = {"png": png.name, "sha256": hashlib.sha256(png.read_bytes()).hexdigest(),
+    rec = {"png": png.name, "sha256": hashlib.sha256(png.read_bytes()).hexdigest(), "dpi": dpi,
            **figure_lint_record(fig)}
+    pkl = png.with_suffix(".fig.gz")
+    try:
+        blob = pickle.dumps(fig, protocol=pickle.HIGHEST_PROTOCOL)
+    except Exception as exc:  # a lambda formatter, an open file, …: verdict only
+        pkl.unlink(missing_ok=True)
+        rec["figure"] = None
+        rec["figure_error"] = f"{type(exc).__name__}: {exc}"
+    else:
+        pkl.write_bytes(gzip.compress(blob, compresslevel=9, mtime=0))
+        rec["figure"] = pkl.name
     side = png.with_suffix(".lint.json")
     side.write_text(json.dumps(rec, indent=1, ensure_ascii=False) + "\n", encoding="utf-8")
     return side
@@ -166,7 +180,7 @@ def write_report(rep: Reproduction, out_dir: str | os.PathLike[str], *, dpi: int
     out = Path(out_dir)
     fig_dir = out / "figures"
     fig_dir.mkdir(parents=True, exist_ok=True)
-    for old in [*fig_dir.glob("*.png"), *fig_dir.glob("*.lint.json")]:
+    for old in [*fig_dir.glob("*.png"), *fig_dir.glob("*.lint.json"), *fig_dir.glob("*.fig.gz")]:
         old.unlink()
     stability = read_stability(out)
     if claims is None:
@@ -204,7 +218,7 @@ def write_report(rep: Reproduction, out_dir: str | os.PathLike[str], *, dpi: int
         lines += ["## Figures", ""]
         for stem, fig in rep.figures.items():
             fig.savefig(fig_dir / f"{stem}.png", dpi=dpi, bbox_inches="tight")
-            write_lint_sidecar(fig, fig_dir / f"{stem}.png")
+            write_lint_sidecar(fig, fig_dir / f"{stem}.png", dpi=dpi)
             alt = describe_figure(fig).replace("[", "(").replace("]", ")")
             lines += [f"![{alt}](figures/{stem}.png)", "", f"*{stem}*", ""]
     report = out / "REPORT.md"

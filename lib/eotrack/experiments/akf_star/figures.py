@@ -257,8 +257,10 @@ def plot_extraction_example(img: np.ndarray, adaptive: Any, global_: Any, g5: in
     a0, a1 = axes
     a0.bar(np.arange(256), np.bincount(np.asarray(img, np.uint8).ravel(), minlength=256),
            width=1)
-    for g in (g5, g95):
+    for g, nm in ((g5, "g5"), (g95, "g95")):
         a0.axvline(g, color="k", ls=":")
+        a0.annotate(nm, (g, 1.0), xycoords=("data", "axes fraction"), xytext=(2, -2),
+                    textcoords="offset points", ha="left", va="top", fontsize=9)
     a0.set_xlabel("grey level g")
     a0.set_ylabel("H(g)")
     a0.set_title(f"histogram: g5 = {g5}, g95 = {g95}", fontsize=10)

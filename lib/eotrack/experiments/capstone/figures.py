@@ -116,8 +116,10 @@ def plot_night(plan: NightPlan, *, axes=None):
     for s, ax in enumerate(axes_):
         for o, name in enumerate(plan.names):
             st = styles[o]
-            ax.plot(h, plan.elevation_deg[s, o], label=f"{name}",
-                    **st.line(marker="none"))
+            ln, = ax.plot(h, plan.elevation_deg[s, o], label=f"{name}",
+                          **st.line(marker="none"))
+            if ln.get_linestyle() not in ("-", "solid"):
+                ln.set_zorder(2.5)  # dashed over solid: objects on one path all stay visible
             umb = plan.grid_shadow[o] == 2
             if umb.any():
                 ax.axvspan(hg[umb].min(), hg[umb].max(), color=st.color, alpha=0.2, lw=0)
@@ -211,10 +213,32 @@ def plot_frame(example: dict, *, ax: plt.Axes | None = None) -> plt.Axes:
     ax.plot(*t.T, "+", color=ON_IMAGE["truth"], ms=18, mew=1.6, ls="none",
             label=f"true objects (SGP4, {len(t)})")
     d = example["drift"]
-    ax.annotate("", xy=(30 + d[0], 30 + d[1]), xytext=(30, 30),
+    # the drift arrow (to scale) in the image corner with the fewest markers, named in the
+    # legend: a text on a star field this dense would hide markers wherever it went
+    h_img, w_img = img.shape[:2]
+    marks = [np.asarray(c.get_offsets(), float) for c in ax.collections
+             if len(c.get_offsets())] + [np.column_stack(ln.get_data()).astype(float)
+                                          for ln in ax.get_lines()]
+    marks = np.vstack(marks) if marks else np.empty((0, 2))
+    span = max(abs(float(d[0])), abs(float(d[1])), 0.06 * w_img) + 0.03 * w_img
+    corners = [(0.05 * w_img, 0.05 * h_img), (0.95 * w_img, 0.05 * h_img),
+               (0.05 * w_img, 0.95 * h_img), (0.95 * w_img, 0.95 * h_img)]
+
+    def start(c):  # the arrow's tail, so that the arrow points into the image
+        return (c[0] + (span if (c[0] < w_img / 2) == (d[0] < 0) else 0) * np.sign(w_img / 2 - c[0]),
+                c[1] + (span if (c[1] < h_img / 2) == (d[1] < 0) else 0) * np.sign(h_img / 2 - c[1]))
+
+    def crowd(c):
+        x, y = start(c)
+        xs, ys = sorted((x, x + d[0])), sorted((y, y + d[1]))
+        return int(np.sum((marks[:, 0] >= xs[0] - 6) & (marks[:, 0] <= xs[1] + 6)
+                          & (marks[:, 1] >= ys[0] - 6) & (marks[:, 1] <= ys[1] + 6)))
+
+    x0, y0 = start(min(corners, key=crowd))
+    ax.annotate("", xy=(x0 + d[0], y0 + d[1]), xytext=(x0, y0),
                 arrowprops={"arrowstyle": "-|>", "color": ON_IMAGE["target"], "lw": 1.5})
-    ax.text(30, 48, "star drift per frame", color=ON_IMAGE["target"], fontsize=9, va="top",
-            bbox={"facecolor": "black", "alpha": 0.6, "lw": 0, "pad": 1.5})
+    ax.plot([], [], ls="none", marker=r"$\rightarrow$", ms=14, color=ON_IMAGE["target"],
+            label="star drift per frame (arrow to scale)")
     ax.grid(False)
     ax.set_xlim(-0.5, img.shape[1] - 0.5)
     ax.set_ylim(img.shape[0] - 0.5, -0.5)
@@ -347,7 +371,8 @@ def _draw_sweep(sweep: pd.DataFrame, level: float, axes) -> tuple[list, Any]:
         a.set_xticks(x)
         a.minorticks_off()
         label_axes(a, x="sky background", xunit="e⁻/px")
-        marks.append(a.axvline(level, color="k", ls="--", lw=1))
+        marks.append(a.axvline(level, color="k", ls="--", lw=1,
+                               label="this sky level" if a is a0 else None))
     for a in (a1, a2):
         vals = np.concatenate([ln.get_ydata() for ln in a.get_lines()[:-1]]).astype(float)
         if np.isfinite(vals).any() and np.nanmin(vals) > 0:

@@ -92,11 +92,15 @@ def plot_epipolar_geometry(scenario: Scenario, pair=(0, 3), target: int = 4, *, 
                    label=("other sensors (" + ", ".join(f"O{m + 1}" for m in others) + ")")
                    if k == others[0] else None)
         if hi:  # the label of the sensor left on screen to its left (below), the other's
-            # to its right (above): placed from the projection, so they never meet
+            # to its right (above): placed from the projection, so they never meet each
+            # other; 1.5 labels' height off the point, clear of the other sensors' markers
             left = k == (a if sx[a] <= sx[b] else b)
-            ax.text(*cam.c, f"O{k + 1}  " if left else f"  O{k + 1}", fontsize=9,
-                    color="tab:blue", ha="right" if left else "left",
-                    va="top" if left else "bottom")
+            from matplotlib.transforms import offset_copy
+
+            shift = offset_copy(ax.transData, fig=fig, x=-6 if left else 6,
+                                y=-9 if left else 9, units="points")
+            ax.text(*cam.c, f"O{k + 1}", fontsize=9, color="tab:blue", transform=shift,
+                    ha="right" if left else "left", va="top" if left else "bottom")
         if hi:
             ax.quiver(*cam.c, *(cam.R[2] * 0.6 * np.linalg.norm(X - cam.c)), color="tab:blue",
                       lw=1, arrow_length_ratio=0.05)
@@ -217,9 +221,26 @@ def plot_frame_chain(scenario: Scenario, k: int = 0, *, fig=None):
         ax = fig.add_subplot(gs[0, 2 * i], projection="3d")
         for e in np.eye(3):
             ax.plot(*np.stack([np.zeros(3), e]).T, color="0.8", lw=1)
+        from mpl_toolkits.mplot3d import proj3d
+
+        ax.set_xlim(-1, 1)
+        ax.set_ylim(-1, 1)
+        ax.set_zlim(-1, 1)
+        placed: list[np.ndarray] = []
         for row, col, lab in zip(R, ("tab:red", "tab:green", "tab:blue"), "xyz"):
             ax.quiver(0, 0, 0, *row, color=col, lw=2, arrow_length_ratio=0.15)
-            ax.text(*(1.15 * row), lab, color=col, fontsize=9)
+            # the letter beyond the tip, aligned away from the origin as projected; a tip
+            # projected within 16 px of an earlier letter gets its letter at mid-arrow
+            where = 1.1 * row
+            px, py, _ = proj3d.proj_transform(*where, ax.get_proj())
+            d = ax.transData.transform((px, py))
+            if any(np.hypot(*(d - q)) < 16 for q in placed):
+                where = 0.5 * row
+                px, py, _ = proj3d.proj_transform(*where, ax.get_proj())
+                d = ax.transData.transform((px, py))
+            placed.append(d)
+            ax.text(*where, lab, color=col, fontsize=9, ha="left" if px >= 0 else "right",
+                    va="bottom" if py >= 0 else "top")
         if i == 1:
             ax.quiver(0, 0, 0, *rhat, color="k", lw=1, ls="--", arrow_length_ratio=0.1)
             ax.text(*(1.1 * rhat), "r", fontsize=9)
@@ -236,7 +257,7 @@ def plot_frame_chain(scenario: Scenario, k: int = 0, *, fig=None):
             axa.set_zorder(5)  # its label is drawn over the neighbouring 3-D panels' panes
             axa.annotate("", xy=(0.95, 0.5), xytext=(0.05, 0.5),
                          arrowprops={"arrowstyle": "->", "lw": 2})
-            axa.set_title(steps[i], fontsize=9, y=0.55)
+            axa.set_title(steps[i], fontsize=9, y=0.36)  # under the arrow, clear of the letters
     fig.suptitle(f"Frames of sensor {k + 1}: "
                  r"$R_\mathrm{sensor} = M\,r(Y, P, R)\,R_\mathrm{orbit}$ (grey: J2000 axes)",
                  fontsize=10, y=1.02)
@@ -466,6 +487,8 @@ def plot_fig6(running: dict, analytic: dict, paper: dict | None = None, *, ax=No
         col = f"C{i}"
         ax.plot(np.arange(1, len(curve) + 1), 100 * curve, color=col, label=f"L = {L:g} px")
         ax.axhline(100 * analytic[L], color=col, ls="--", lw=0.8)
+    # one grey key for the dashed lines of every L (the lint reads it as naming them)
+    ax.plot([], [], color="0.3", ls="--", lw=0.8, label="dashed: analytic")
     if paper is not None:
         n = paper["n_simulations"]
         vals = 100 * np.asarray(paper["max_false_rate"])

@@ -217,9 +217,9 @@ def draw_scene_3d(scene: Any, ax=None, *, frustum_depth: float = 2.0):
     for c in corners[:4]:
         ax.plot(*np.column_stack([np.zeros(3), c]), color="0.6", lw=0.6)
     ax.plot(*corners.T, color="0.6", lw=0.6)
-    ax.set_xlabel("x_c (m)")
-    ax.set_ylabel("y_c (m)")
-    ax.set_zlabel("z_c (m, optical axis)")
+    ax.set_xlabel("$x_c$ (m)")
+    ax.set_ylabel("$y_c$ (m)")
+    ax.set_zlabel("$z_c$ (m, optical axis)")
     for axis in (ax.xaxis, ax.yaxis):
         axis.set_major_locator(MaxNLocator(4))
     ax.set_box_aspect((1, 1, 2.5))
@@ -256,9 +256,14 @@ def plot_crlb_ellipsoid(C: np.ndarray, samples: np.ndarray | None = None, *,
         ax.scatter(*s.T, s=4, c="C0", alpha=0.6, label=f"ML estimates ({len(s)} draws)")
         ax.legend(loc="upper left")
     unit = "m" if block == "pos" else "deg"
-    names = ("δt_x", "δt_y", "δt_z") if block == "pos" else ("δθ_x", "δθ_y", "δθ_z")
+    names = ((r"$\delta t_x$", r"$\delta t_y$", r"$\delta t_z$") if block == "pos" else
+             (r"$\delta\theta_x$", r"$\delta\theta_y$", r"$\delta\theta_z$"))
     for setter, nm in zip((ax.set_xlabel, ax.set_ylabel, ax.set_zlabel), names):
         setter(f"{nm} ({unit})")
+    from matplotlib.ticker import MaxNLocator
+
+    for axis in (ax.xaxis, ax.yaxis, ax.zaxis):  # 3-D tick labels run into each other
+        axis.set_major_locator(MaxNLocator(4))
     ax.set_title(f"{n_sigma:g}-σ CRLB ellipsoid, {'position' if block == 'pos' else 'attitude'}")
     return ax
 
@@ -271,7 +276,7 @@ def plot_efficiency(df: pd.DataFrame, ax=None):
         line = ax.loglog(x, g["att RMS / CRLB"], "o-", label=f"{name}: attitude")[0]
         ax.loglog(x, g["pos RMS / CRLB"], "s--", color=line.get_color(),
                   label=f"{name}: position")
-    ax.axhline(1.0, color="k", lw=0.8)
+    ax.axhline(1.0, color="k", lw=0.8, label="ratio 1: at the CRLB")
     log_axis(ax, "both")
     ax.set_xlabel("noise unit (mm): 1 = as printed, 0.01 = 10 µm pixel")
     ax.set_ylabel("RMS error / √CRLB")

@@ -101,14 +101,14 @@ def plot_comparison(df: pd.DataFrame, sweep: str, metric: str,
             label = "logic 3/4 (= angle logic here)"
         ax.plot(g[x], g[metric], style, ms=4, mfc="none" if name.startswith("angle") else None,
                 label=label)
-    ax.set_xlabel("false alarms per frame" if x == "clutter" else "detection probability P_D")
+    ax.set_xlabel("false alarms per frame" if x == "clutter" else r"detection probability $P_\mathrm{D}$")
     ax.set_ylabel({"p_correct": "P(correct initiation)",
                    "false_per_frame": "false tracks per frame"}[metric])
     if metric == "false_per_frame":
         ax.set_yscale("symlog", linthresh=0.01)
     ax.set_title({"p_correct": "correct initiations",
                   "false_per_frame": "false tracks"}[metric]
-                 + (" vs clutter" if x == "clutter" else " vs P_D"))
+                 + (" vs clutter" if x == "clutter" else r" vs $P_\mathrm{D}$"))
     ax.xaxis.set_major_locator(plt.MaxNLocator(4))
     if legend:
         legend_outside(ax, where="right")
@@ -225,7 +225,7 @@ def plot_rho_theta_votes(scene: Scene, cfg: XuConfig | None = None, *, target: i
         differ = [lab_ for lab_, v_ in (("θ", it), ("ρ", ir)) if len(np.unique(v_)) > 1]
         verdict = ("one cell" if not differ else
                    f"cells differ in {' and '.join(differ)}"
-                   + (" (not 6-neighbours)" if len(differ) > 1 else " (6-neighbours)"))
+                   + ("\n(not 6-neighbours)" if len(differ) > 1 else "\n(6-neighbours)"))
         ax.set_xlim(t0, t1)
         ax.set_ylim(r0, r1)
         ax.xaxis.set_major_locator(plt.MaxNLocator(5))
@@ -321,7 +321,7 @@ def plot_scene_tracks(scene: Scene, tracks: list[Track], ax: plt.Axes | None = N
     ax.plot(*allxy.T, ".", color="0.7", ms=3)
     truth = np.array(scene.truth_xy)
     for i in range(scene.n_targets):
-        ax.plot(*truth[:, i].T, ":", color="k", lw=1)
+        ax.plot(*truth[:, i].T, ":", color="k", lw=1, zorder=3)  # dotted, over the tracks
     sc = score_tracks(tracks, scene)
     seen: set[bool] = set()
     for tr in tracks:

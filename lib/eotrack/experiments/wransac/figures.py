@@ -181,8 +181,10 @@ def plot_prediction(res: PredictionResults, run: int = 0, coord: str = "dec",
             label="true track (SGP4)")
     for m in methods:
         if m in res.methods:
-            ax.plot(tmin[n:], sc.truth_pred[ci] + res.errors[run, res.methods.index(m), ci],
-                    label=METHOD_LABELS.get(m, m))
+            ln, = ax.plot(tmin[n:], sc.truth_pred[ci] + res.errors[run, res.methods.index(m), ci],
+                          label=METHOD_LABELS.get(m, m))
+            if ln.get_linestyle() not in ("-", "solid"):
+                ln.set_zorder(2.5)  # dashed over solid: a prediction equal to another shows
     ax.axvspan(0, tmin[-1], color="0.9", zorder=-1)
     lo, hi = np.percentile(np.r_[sc.truth_obs[ci], sc.truth_pred[ci]], [0, 100])
     pad = 0.3 * (hi - lo) + 60
@@ -251,7 +253,7 @@ def plot_leverage(res: PredictionResults, coord: str = "dec", *,
     sc = res.scenario
     tm = (sc.t_pred_s - sc.t_obs_s[-1]) / 60.0
     gm = np.sqrt(np.mean(res.gm_sd[:, ci] ** 2, axis=0))
-    ax.plot(tm, gm, "k-", label="Gauss–Markov / Cramér–Rao σ_pred")
+    ax.plot(tm, gm, "k-", label=r"Gauss–Markov / Cramér–Rao $\sigma_\mathrm{pred}$")
     for k, m in enumerate(x for x in ("ransac", "wransac", "ideal") if x in res.methods):
         ax.plot(tm, res.errors[:, res.methods.index(m), ci].std(axis=0), color=f"C{k}",
                 label=f"{METHOD_LABELS.get(m, m)} (measured)")
@@ -272,13 +274,14 @@ def plot_ratio_table(table: pd.DataFrame, coord: str = "dec", *,
     r = sub["var ratio to RANSAC"].to_numpy()
     err = np.stack([r - sub["95 % lo"].to_numpy(), sub["95 % hi"].to_numpy() - r])
     ax.errorbar(r, y, xerr=err, fmt="o", capsize=3)
-    ax.axvline(1.0, c="k", lw=0.8)
+    ax.axvline(1.0, c="k", lw=0.8, label="ratio 1: as RANSAC")
     ax.set_yticks(y, labels)
     ax.set_xscale("log")
     log_axis(ax, "x")
     label_axes(ax, x="variance ratio to RANSAC (72 min, paired, 95 % bootstrap)",
                y="noise · WRANSAC reading",
                title=f"Which reading × noise gives the paper's ordering? ({coord})")
+    legend_outside(ax, where="below")
     return ax
 
 
@@ -323,7 +326,7 @@ def plot_threshold_sensitivity(df: pd.DataFrame, *, ax: plt.Axes | None = None) 
              "sinusoidal": "sinusoidal"}
     keys = ["wransac" if "weighted" in c else names.get(c.split(" +")[0], c) for c in df.columns]
     for c, st in zip(df.columns, _styles(keys), strict=True):
-        ax.plot(df.index, df[c], label=c, **st.line())
+        ax.plot(df.index, df[c], label=c.replace("L_s", "$L_s$"), **st.line())
     ax.set_yscale("log")
     log_axis(ax, "y")
     label_axes(ax, x="threshold $t/\\sigma$", y="median RMS 72-min Dec error", yunit="″",
