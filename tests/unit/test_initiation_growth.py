@@ -1,5 +1,7 @@
 """The growth engine of the verified modified Hough initiator (issue 27, ``grow=True``)."""
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 from eotrack.experiments import track_init_hough as TH
@@ -82,9 +84,10 @@ def test_a_burst_frame_cannot_take_a_longer_track():
     assert len(pure) == 1 and len(pure[0].hits) == 6
 
 
-@pytest.mark.xfail(reason="not met: recall 30/40 on this sample with the final default (35/40 "
-                          "with growth always on); issue 27's held-out target, see the benchmark",
-                   strict=False)
+@pytest.mark.xfail(reason="not met: recall 35/40 on this sample with the default of 2026-12-02 "
+                          "15:30 UTC (the growth engine runs on every scene of this family, as "
+                          "with growth always on; 30/40 before); issue 27's held-out target, see "
+                          "the benchmark", strict=False)
 def test_small_held_out_sample():
     """A regression guard on a small sample of the held-out family (seed 3: neither the
     decisive seed nor a tuning one; the criterion is judged in the benchmark on 60 scenes):
@@ -109,6 +112,39 @@ def test_constant_velocity_scenes_keep_the_causal_engine():
     a = ModifiedHoughInitiator(v_min=3, v_max=240).initiate(sc.frames)
     b = ModifiedHoughInitiator(v_min=3, v_max=240, grow=False).initiate(sc.frames)
     assert [tr.hits for tr in a] == [tr.hits for tr in b]
+
+
+@pytest.mark.parametrize("lam", [30.0, 50.0])
+def test_clutter_only_scenes_keep_the_causal_engine(lam):
+    """Pure clutter (no object, no burst): chance four-hit tracks that only a
+    constant-acceleration fit explains must not switch the growth engine on."""
+    rng = np.random.default_rng(7)
+    cfg = replace(TH.PlantedConfig(), clutter_per_frame=(lam, lam))
+    ini = ModifiedHoughInitiator(v_min=3, v_max=240)
+    for _ in range(6):
+        sc = TH.planted_scene(rng, cfg, n_objects=0, n_stars=0)
+        a = ini.initiate(sc.frames)
+        b = replace(ini, grow=False).initiate(sc.frames)
+        assert [tr.hits for tr in a] == [tr.hits for tr in b]
+
+
+def test_a_clutter_burst_runs_the_growth_engine():
+    """One frame with 150 extra false alarms: the growth engine's tracks are returned even when
+    the causal result shows no accelerating track."""
+    rng = np.random.default_rng(5)
+    frames = [(float(k), rng.uniform(0, 512, (20 + (150 if k == 3 else 0), 2)))
+              for k in range(6)]
+    ini = ModifiedHoughInitiator(v_min=3, v_max=240)
+    a = ini.initiate(frames)
+    g = replace(ini, grow_min_accelerating=0).initiate(frames)
+    c = replace(ini, grow_burst=0.0).initiate(frames)
+    assert [tr.hits for tr in a] == [tr.hits for tr in g]
+    assert [tr.hits for tr in a] != [tr.hits for tr in c]
+
+
+def test_grow_burst_is_checked():
+    with pytest.raises(ValueError, match="grow_burst"):
+        ModifiedHoughInitiator(grow_burst=-1.0)
 
 
 def test_crowded_frames_run_the_causal_engine():

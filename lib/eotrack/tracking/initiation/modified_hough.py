@@ -185,7 +185,10 @@ class ModifiedHoughInitiator:
         intervals and missed frames allowed), and one best-first selection over the whole
         sequence prefers longer tracks, so chance triplets (a clutter burst's too) cannot take
         the detections of a longer track; see ``_GrowEngine``. A track's ``confirmed_at`` is
-        the first frame at which its hits meet the ``(m−1)/m`` rule. ``False``: the causal
+        the first frame at which its hits meet the ``(m−1)/m`` rule. **Not causal**: when
+        growth runs, the tracks confirmed at frame ``k`` depend on frames after ``k`` (appending
+        a frame can change them), so it is an offline (batch) mode, not a real-time initiator
+        as the paper's; see ``grow_min_accelerating`` for when it runs. ``False``: the causal
         frame-by-frame engine (the options ``hold_triplets``, ``accel_triplets``,
         ``accel_gapped`` act there only).
     seed_budget
@@ -211,11 +214,20 @@ class ModifiedHoughInitiator:
         with selected three-hit tracks (none with longer ones) and misses at most this many
         in-field frames is also reported (ambiguous triplets both kept); ``−1``: never.
     grow_min_accelerating
-        Growth runs only when the data show accelerating objects: the causal engine runs first,
-        and its result is kept unless at least this many of its tracks of ≥ ``m`` hits pass the
-        constant-acceleration χ² and fail the constant-velocity one (both at ``alpha``). So
-        scenes of constant-velocity objects (the paper's) keep the causal engine's tracks.
-        ``0``: always grow.
+        Growth runs only when the data call for it: the causal engine runs first, and its
+        result is kept unless (a) a frame is a clutter burst (``grow_burst``), or (b) at least
+        this many of its tracks of ≥ ``m + 1`` hits pass the constant-acceleration χ² and fail
+        the constant-velocity one (both at ``alpha``), or (c) the growth engine's own result
+        holds at least this many such tracks (the causal engine can lose every accelerating
+        object to chance triplets, so (b) alone misses the scenes that need growth most).
+        Tracks of ``m`` hits are not evidence: in clutter, chance four-hit tracks pass the
+        constant-acceleration test and fail the constant-velocity one too often. So scenes of
+        constant-velocity objects without bursts (the paper's) keep the causal engine's
+        tracks. ``0``: always grow.
+    grow_burst
+        Growth runs (unless the frames are crowded) when one frame holds more than this many
+        times the median frame's detections and at least 50 more (a clutter burst); ``0``:
+        bursts do not trigger growth.
     grow_max_seeds
         Growth is skipped (the causal engine runs) when, in the median frame, the unwidened
         χ² discs alone would hold more than this many chance seeds per frame triple (crowded
@@ -252,6 +264,7 @@ class ModifiedHoughInitiator:
     share_missed: int = 1
     grow_max_seeds: float = 100.0
     grow_min_accelerating: int = 1
+    grow_burst: float = 3.0
 
     def __post_init__(self) -> None:
         check_positive(self.d_rho, "d_rho")
@@ -295,7 +308,7 @@ class ModifiedHoughInitiator:
         if not isinstance(self.grow, (bool, np.bool_)):
             raise TypeError(f"grow must be True or False, got {self.grow!r}")
         for name in ("seed_budget", "grow_chance", "triplet_budget", "miss_weight",
-                     "grow_max_seeds"):
+                     "grow_max_seeds", "grow_burst"):
             check_positive(getattr(self, name), name, allow_zero=True)
         check_positive(self.grow_chance, "grow_chance")
         check_int(self.max_missed, "max_missed", min_value=0)
@@ -335,10 +348,18 @@ class ModifiedHoughInitiator:
             work = [Frame(float(t), x) for t, x in zip(times, xys)]
             causal = _VerifiedEngine(self, xys, times, work, perms, log).run()
             if not (self.grow and self.accel_px_s2 > 0) \
-                    or _crowded(self, times, xys) > self.grow_max_seeds \
-                    or _accelerating(causal.tracks, fr, times, self) < self.grow_min_accelerating:
+                    or _crowded(self, times, xys) > self.grow_max_seeds:
                 return causal
-            return _GrowEngine(self, xys, times, work, perms, log).run()
+            k = self.grow_min_accelerating
+            if _burst(xys, self.grow_burst) or _accelerating(
+                    causal.tracks, fr, times, self, min_hits=self.m + 1) >= k:
+                return _GrowEngine(self, xys, times, work, perms, log).run()
+            # the causal engine can lose the very accelerating objects that would show the
+            # need for growth (chance triplets take their detections): the growth engine's own
+            # tracks are evidence too
+            grown = _GrowEngine(self, xys, times, work, perms, log).run()
+            return grown if _accelerating(grown.tracks, fr, times, self,
+                                          min_hits=self.m + 1) >= k else causal
         o = np.asarray(self.origin_px, dtype=float)
         xys = [f.xy[p] - o for f, p in zip(fr, perms)]
         return _Engine(self, xys, times, fr, perms, log).run()
@@ -1569,12 +1590,23 @@ def _crowded(cfg: ModifiedHoughInitiator, times: np.ndarray, xys: list[np.ndarra
     return float(np.median(pairs * n[1:-1] * math.pi * r02 / area))
 
 
+def _burst(xys: list[np.ndarray], factor: float) -> bool:
+    """Whether one frame holds more than ``factor`` times the median frame's detections and
+    at least 50 more (a clutter burst: chance triplets through it compete for the other
+    frames' detections); ``factor`` 0: never."""
+    if factor <= 0 or len(xys) < 3:
+        return False
+    n = np.array([len(x) for x in xys], dtype=float)
+    med = float(np.median(n))
+    return bool(np.any((n > factor * med) & (n >= med + 50.0)))
+
+
 def _accelerating(tracks: list[Track], frames: list[Frame], times: np.ndarray,
-                  cfg: ModifiedHoughInitiator) -> int:
+                  cfg: ModifiedHoughInitiator, min_hits: int | None = None) -> int:
     """How many tracks of at least ``m`` hits the constant-acceleration χ² accepts and the
     constant-velocity χ² rejects (both at ``alpha``, noise ``sigma_px``): the evidence that the
     scene holds accelerating objects (``grow_min_accelerating``)."""
-    long_ = [tr for tr in tracks if len(tr.hits) >= cfg.m]
+    long_ = [tr for tr in tracks if len(tr.hits) >= (cfg.m if min_hits is None else min_hits)]
     if not long_:
         return 0
     n_f = len(frames)
