@@ -57,9 +57,11 @@ from .figures import (
     plot_xu_frames,
 )
 from .scenario import (
+    HELDOUT_CODE,
     HELDOUT_OPTS,
     HELDOUT_SEED,
     HELDOUT_SEED_FIRST,
+    HELDOUT_SEED_FOURTH,
     HELDOUT_SEED_SECOND,
     HELDOUT_SEED_THIRD,
     HELDOUT_TARGETS,
@@ -99,9 +101,11 @@ __all__ = [
     "CHANCE_CHECK_FILE",
     "EXPLORE_CLUTTER",
     "EXPLORE_SCENES",
+    "HELDOUT_CODE",
     "HELDOUT_OPTS",
     "HELDOUT_SEED",
     "HELDOUT_SEED_FIRST",
+    "HELDOUT_SEED_FOURTH",
     "HELDOUT_SEED_SECOND",
     "HELDOUT_SEED_THIRD",
     "HELDOUT_TARGETS",
