@@ -222,3 +222,20 @@ def test_sidecar_is_the_saved_figures_verdict(tmp_path):
     rec = json.loads(side.read_text())
     side.write_text(json.dumps({**rec, "lint": "0123456789ab"}))
     assert [r for r, _ in sidecar_problems(side)] == ["stale-sidecar"]
+
+
+def test_sidecar_of_a_figure_too_large_to_keep(tmp_path, monkeypatch):
+    """A pickled figure over the size cap is not written: the verdict alone, which counts
+    only while the lint that wrote it is current."""
+    import matplotlib.pyplot as plt
+    from eotrack.repro import report
+
+    monkeypatch.setattr(report, "MAX_FIGURE_BYTES", 100)
+    fig, ax = plt.subplots()
+    ax.plot([0, 1], [0, 1])
+    ax.set(xlabel="time (s)", ylabel="height (m)", title="a line")
+    fig.savefig(tmp_path / "f.png", dpi=110, bbox_inches="tight")
+    side = report.write_lint_sidecar(fig, tmp_path / "f.png")
+    rec = json.loads(side.read_text())
+    assert rec["figure"] is None and "MB >" in rec["figure_error"]
+    assert not (tmp_path / "f.fig.gz").exists() and sidecar_problems(side) == []

@@ -16,7 +16,7 @@ from .claims import Claim, load_claims
 from .scorecard import ClaimResult, scorecard, status_summary
 from .stability import Stability, read_stability
 
-__all__ = ["Reproduction", "central_line", "write_lint_sidecar", "write_report"]
+__all__ = ["Reproduction", "central_line", "pickle_figure", "write_lint_sidecar", "write_report"]
 
 
 @dataclass
@@ -128,21 +128,38 @@ def _history_lines(claims: dict[str, Claim]) -> list[str]:
     return out
 
 
-def write_lint_sidecar(fig: Any, png: str | os.PathLike[str], *, dpi: int = 110) -> Path:
+#: Largest pickled figure (gzip) written beside a REPORT figure; a larger one (an image kept at
+#: full resolution in float64) keeps only the lint's verdict.
+MAX_FIGURE_BYTES = 2_000_000
+
+
+def pickle_figure(fig: Any) -> bytes:
+    """``fig`` pickled and gzipped, as :func:`write_lint_sidecar` stores it. Pickle a figure
+    before its first ``savefig``: a layout engine (``layout="constrained"``) moves the axes
+    when the figure is drawn, so a figure pickled after saving renders a little differently."""
+    import gzip
+    import pickle
+
+    return gzip.compress(pickle.dumps(fig, protocol=pickle.HIGHEST_PROTOCOL), compresslevel=9,
+                         mtime=0)
+
+
+def write_lint_sidecar(fig: Any, png: str | os.PathLike[str], *, dpi: int = 110,
+                       pickled: bytes | None = None) -> Path:
     """Beside a saved figure ``<name>.png`` write ``<name>.lint.json`` and ``<name>.fig.gz``
     (issue 23): the figure lint's verdict on that very Figure object, the SHA-256 of the PNG
     written and the pickled Figure itself (gzip), so the lint test re-lints the committed PNG's
     figure with the current rules — checking first that it renders to that PNG — without
-    running the paper again. A figure that cannot be pickled keeps only the verdict.
+    running the paper again. ``pickled``: the figure as :func:`pickle_figure` returned it
+    before the PNG was saved (default: pickled now). A figure that cannot be pickled, or whose
+    pickle is over :data:`MAX_FIGURE_BYTES`, keeps only the verdict.
 
     Returns
     -------
     pathlib.Path
         The sidecar's path.
     """
-    import gzip
     import hashlib
-    import pickle
 
     from eotrack.plotting import figure_lint_record
 
@@ -150,15 +167,20 @@ def write_lint_sidecar(fig: Any, png: str | os.PathLike[str], *, dpi: int = 110)
     rec = {"png": png.name, "sha256": hashlib.sha256(png.read_bytes()).hexdigest(), "dpi": dpi,
            **figure_lint_record(fig)}
     pkl = png.with_suffix(".fig.gz")
+    pkl.unlink(missing_ok=True)
     try:
-        blob = pickle.dumps(fig, protocol=pickle.HIGHEST_PROTOCOL)
+        blob = pickle_figure(fig) if pickled is None else pickled
     except Exception as exc:  # a lambda formatter, an open file, …: verdict only
-        pkl.unlink(missing_ok=True)
         rec["figure"] = None
         rec["figure_error"] = f"{type(exc).__name__}: {exc}"
     else:
-        pkl.write_bytes(gzip.compress(blob, compresslevel=9, mtime=0))
-        rec["figure"] = pkl.name
+        if len(blob) > MAX_FIGURE_BYTES:  # the repository is no place for it: verdict only
+            rec["figure"] = None
+            rec["figure_error"] = (f"pickled figure {len(blob) / 1e6:.1f} MB > "
+                                   f"{MAX_FIGURE_BYTES / 1e6:.0f} MB")
+        else:
+            pkl.write_bytes(blob)
+            rec["figure"] = pkl.name
     side = png.with_suffix(".lint.json")
     side.write_text(json.dumps(rec, indent=1, ensure_ascii=False) + "\n", encoding="utf-8")
     return side
@@ -217,8 +239,12 @@ def write_report(rep: Reproduction, out_dir: str | os.PathLike[str], *, dpi: int
     if rep.figures:
         lines += ["## Figures", ""]
         for stem, fig in rep.figures.items():
+            try:
+                blob = pickle_figure(fig)  # before the first draw (see pickle_figure)
+            except Exception:
+                blob = None  # write_lint_sidecar records why
             fig.savefig(fig_dir / f"{stem}.png", dpi=dpi, bbox_inches="tight")
-            write_lint_sidecar(fig, fig_dir / f"{stem}.png", dpi=dpi)
+            write_lint_sidecar(fig, fig_dir / f"{stem}.png", dpi=dpi, pickled=blob)
             alt = describe_figure(fig).replace("[", "(").replace("]", ")")
             lines += [f"![{alt}](figures/{stem}.png)", "", f"*{stem}*", ""]
     report = out / "REPORT.md"

@@ -375,7 +375,10 @@ def plot_fig3(scenario: Scenario, obs: Observation, images: list[np.ndarray], *,
     for k, ax in enumerate(axes.ravel()):
         img = images[k]
         lo, hi = np.percentile(img, [5, 99.7])
-        ax.imshow(np.clip((img - lo) / (hi - lo), 0, 1) ** 0.5, cmap="gray", origin="upper")
+        # the stretched image as 8-bit grey levels (the grey colour map has 256 levels: the
+        # same picture, and an eighth of the data kept in the figure and its pickle)
+        grey = np.round(255 * np.clip((img - lo) / (hi - lo), 0, 1) ** 0.5).astype(np.uint8)
+        ax.imshow(grey, cmap="gray", vmin=0, vmax=255, origin="upper")
         pts_k = obs.points[k]
         for xy, lab in zip(pts_k, obs.labels[k]):
             if lab >= 0:
