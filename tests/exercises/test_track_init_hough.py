@@ -158,3 +158,11 @@ def test_exercise2_rejects_the_xu_scenes_gate():
         sigma_px=cfg.sigma_px, alpha=cfg.alpha) for a, b, c in TH.triplet_shapes(len(t)))
     assert abs(wrong / _right_2() - 1) > 1e-3
     assert not check("track_init_hough.2", wrong)
+
+
+def test_exercise2_accepts_four_significant_digits():
+    """Review rev04 #10: the right answer written with the notebook's display precision (four
+    significant digits) passes; three significant digits' worth of error would not."""
+    right = _right_2()
+    assert check("track_init_hough.2", float(f"{right:.4g}"))
+    assert not check("track_init_hough.2", right * 1.005)

@@ -105,7 +105,7 @@ register("track_init_hough.2", NumericAnswer(
     "passing triples Σ N₁N₂N₃ P₃ over the frame triples of triplet_shapes (§4.6's first step: "
     "every detection counted as available, before depletion and conflicts), with the planted "
     "scenes' gate, σ, α and field width.",
-    expected=_ex2_expected, rtol=1e-4,
+    expected=_ex2_expected, rtol=2e-3,  # 4 significant digits pass; the 10 px/s gate (0.75 %) not
     hint="N_f is the number of detections of frame f; P₃ is triplet_chance_probability of the "
          "three frames' times; the sum runs over every (a, b, c) of triplet_shapes(6)"))
 
