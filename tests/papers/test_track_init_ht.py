@@ -120,9 +120,10 @@ def test_explore_figure_updates_one_figure_in_place():
                              show_eq7=False)
     assert f_a is f_b  # no new figure per redraw
     a1, a2 = f_b.axes
-    assert "S = 9" in a1.get_title() and "T_h = 5" in a2.get_title()  # clipped to W_S and T
+    assert "$S$ = 9" in a1.get_title() and "$T_h$ = 5" in a2.get_title()  # clipped to W_S, T
     assert a1.get_xlim() == (0.5, 9.5) and a2.get_xlim() == (0.5, 5.5)
-    assert len(a1.get_legend().get_texts()) == 2  # eq. (7) hidden
+    labels = [t.get_text() for t in a1.get_legend().get_texts()]
+    assert len(labels) == 3 and "chosen $S$" in labels  # eq. (7) hidden; the S mark named
 
 
 # ---------------------------------------------------------------- statistics rules (MACHINERY.md)

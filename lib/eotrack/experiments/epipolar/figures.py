@@ -488,10 +488,12 @@ def plot_fig6(running: dict, analytic: dict, paper: dict | None = None, *, ax=No
     ax = get_ax(ax, figsize=(6.4, 4.0))
     for i, (L, curve) in enumerate(running.items()):
         col = f"C{i}"
-        ax.plot(np.arange(1, len(curve) + 1), 100 * curve, color=col, label=f"L = {L:g} px")
+        # running means solid, analytic bounds thin dashed (one grey key names them all)
+        ax.plot(np.arange(1, len(curve) + 1), 100 * curve, color=col, ls="-",
+                label=f"L = {L:g} px")
         ax.axhline(100 * analytic[L], color=col, ls="--", lw=0.8)
     # one grey key for the dashed lines of every L (the lint reads it as naming them)
-    ax.plot([], [], color="0.3", ls="--", lw=0.8, label="dashed: analytic")
+    ax.plot([], [], color="0.3", ls="--", lw=0.8, label="thin dashed: analytic")
     if paper is not None:
         n = paper["n_simulations"]
         vals = 100 * np.asarray(paper["max_false_rate"])
