@@ -12,7 +12,4 @@ before the kernel recorded the lint's verdict: re-execute it).
 # bars/scatter lists/bands, deuteranopia pairs, 1e−03 labels); requests to the owners in
 # /tmp/coord/requests/fig-<slug>.md (comment: the rules each figure still fails)
 XFAIL: dict[str, str] = {
-    # stored 07 prediction figure (cell 50): multi-line x tick labels 'Haleakala\n14128', …
-    # overlap each other (9); the lint case passes (other data); request fig-capstone.md, 07:10
-    "notebook:07_capstone_geo_surveillance": "CAP",
 }

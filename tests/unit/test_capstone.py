@@ -103,6 +103,13 @@ def test_simple_formulas():
     assert 0.2 < C.expected_completeness(C.with_changes(sky_e=6400)) < 0.8
     assert C.expected_recall(C.with_changes(sky_e=6400)) < C.expected_completeness(
         C.with_changes(sky_e=6400))
+    # the initiator's rule (3 hits in some window of 4 of the 5 frames), exact: at p = 0.67 it
+    # exceeds the per-frame completeness; 4-of-5 (the old, wrong rule) would give 0.44
+    assert C.expected_recall(completeness=0.67) == pytest.approx(0.6967776421, abs=1e-9)
+    assert C.expected_recall(completeness=1.0) == 1.0
+    assert C.expected_recall(completeness=0.0) == 0.0
+    with pytest.raises(ValueError, match="completeness"):
+        C.expected_recall(completeness=1.5)
 
 
 def test_velocity_gate_follows_pixel_scale_and_rates():
@@ -177,6 +184,40 @@ def test_predicted_false_association_is_a_probability_and_larger_in_the_cluster(
         "p_wrong_in_gate"].mean()
     wide = C.predicted_false_association(plan, gate_px=50.0)
     assert wide["p_wrong_in_gate"].mean() > fa["p_wrong_in_gate"].mean()
+    # only the station's knowledge is read: scrambling every burst's truth arrays (positions,
+    # fluxes, pixels) changes nothing
+    from dataclasses import replace
+
+    junk = replace(plan, bursts=tuple(replace(b, target_gcrs_km=b.target_gcrs_km * 0 + 1e4,
+                                              target_flux=b.target_flux * 0,
+                                              target_xy=b.target_xy * 0) for b in plan.bursts))
+    pd.testing.assert_frame_equal(C.predicted_false_association(junk), fa)
+    with pytest.raises(ValueError, match="sigma_px"):
+        C.predicted_false_association(plan, sigma_px=0.0)
+
+
+def test_measured_sigma_paired_series_and_seed_table():
+    pairs = pd.DataFrame({"epipolar_px": [0.1, -0.1, 5.0], "n_in_gate": [1, 1, 2],
+                          "cluster": [False, True, True]})
+    assert C.measured_epipolar_sigma_px(pairs) == pytest.approx(0.1 / np.sqrt(2))
+    assert np.isnan(C.measured_epipolar_sigma_px(pairs.iloc[:0]))
+    with pytest.raises(TypeError, match="pairs"):
+        C.measured_epipolar_sigma_px([0.1])
+    # paired: a case missing from one series is left out of every series
+    pred = pd.DataFrame({"station": ["A"] * 5, "object": ["1", "1", "1", "2", "2"],
+                         "series": ["field", "catalogue", "confirmed", "field", "catalogue"],
+                         "method": ["lsq"] * 5, "rms_arcsec": [4.0, 2.0, 1.0, 100.0, 1.0]})
+    tab = C.paired_series_rms(pred)
+    assert len(tab) == 2 and tab.iloc[-1].tolist() == [4.0, 2.0, 1.0]
+    with pytest.raises(TypeError, match="prediction"):
+        C.paired_series_rms(None)
+    sc = pd.DataFrame({"key": ["a", "b"], "stage": ["s", "s"], "measured": [1.0, 2.0],
+                       "pass": [True, False]})
+    sc2 = sc.assign(**{"pass": [True, True]})
+    st = C.seed_stability({1: sc, 2: sc2})
+    assert st.loc["a", "passes"] == "2/2" and st.loc["b", "passes"] == "1/2 fragile"
+    with pytest.raises(ValueError, match="scorecards"):
+        C.seed_stability({})
 
 
 def test_stage_sky_object_never_rises():
@@ -282,6 +323,17 @@ def test_quick_night_every_stage(quick_night):
     assert {"extraction", "astrometry", "triangulation", "association"} <= set(sc["stage"])
 
 
+def test_hypothesis_count_study_on_the_quick_night(quick_night):
+    h = C.hypothesis_count_study(quick_night, n_hypotheses=(3, 100))
+    assert len(h) >= 1 and (h["n_fit"] >= 6).all()
+    for u_ in (3, 100):
+        assert h[f"ransac inliers U={u_}"].between(0, 1).all()
+        assert h[f"wransac weight U={u_}"].between(0, 1).all()
+    # a RANSAC that kept every point refits by least squares: LSQ's error exactly
+    full = h["ransac inliers U=100"] == 1
+    np.testing.assert_allclose(h.loc[full, "ransac U=100"], h.loc[full, "lsq"])
+
+
 def test_stored_night_round_trip(quick_night, tmp_path):
     from eotrack.experiments.capstone import stored as S
 
@@ -302,7 +354,9 @@ def test_quick_night_serial_equals_local_cluster(quick_night):
     distributed = pytest.importorskip("distributed")
     import logging
 
-    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+    # one worker process with two threads: the bursts cross a process boundary (pickled) and
+    # finish out of order, at half the start-up cost of two worker processes
+    with distributed.LocalCluster(n_workers=1, threads_per_worker=2, processes=True,
                                   dashboard_address=":0", silence_logs=logging.ERROR) as cl, \
             distributed.Client(cl) as cli:
         dask = C.run_night(QUICK, runner=TrialRunner(scheduler=cli, progress=False))

@@ -173,3 +173,43 @@ def test_frames_pipeline_at_fine_pixels_other_field_and_station(scale, dec, stat
     dra = (np.asarray(tgt["ra"]) - seq.target_ra_deg[k]) * np.cos(np.radians(dec0)) * 3600
     dde = (np.asarray(tgt["dec"]) - seq.target_dec_deg[k]) * 3600
     assert np.max(np.hypot(dra, dde)) < scale
+
+
+def test_default_config_keeps_the_target_at_5_arcsec_per_px():
+    """The public PipelineConfig() (PSF σ not given) at 5″/px: the point extractor's own PSF
+    estimate is inflated by the 6-px star trails (≈ 1.8 px for a 1-px PSF) and used to lose the
+    target in 4 of 15 frames; the width is now measured across the trails."""
+    from eotrack.imaging import extract_stars
+    from eotrack.pipeline import cross_trail_psf_sigma
+
+    lost = 0
+    for seed in (0, 1):
+        seq = simulate_sequence(np.random.default_rng(seed), pixel_scale_arcsec=5.0,
+                                target_rate_px_s=(0.3, 0.1), n_frames=4)
+        for k, f in enumerate(seq.frames):
+            xy, _, _ = extract_frame(f, PipelineConfig())
+            lost += not (np.hypot(*(xy - seq.target_xy[k]).T) < 1.0).any()
+        f = seq.frames[0]
+        raw = extract_stars(f.image, config=PipelineConfig().sky, return_info=True)
+        assert raw.psf_sigma > 1.5                                  # the inflated estimate
+        # pixel integration and the rendered spots' spacing widen it by ≈ 5–20 %
+        assert 0.9 < cross_trail_psf_sigma(f.image, raw.xy, star_trail_px(f)) < 1.3
+    assert lost == 0
+    with pytest.raises(ValueError, match="trail_px"):
+        cross_trail_psf_sigma(np.zeros((32, 32)), np.zeros((1, 2)), (np.nan, 0.0))
+    assert cross_trail_psf_sigma(np.zeros((32, 32)), np.zeros((0, 2)), (6.0, 0.0)) == 1.0
+
+
+def test_no_candidates_in_the_trail_border():
+    from eotrack.pipeline import target_border_px
+
+    seq = simulate_sequence(np.random.default_rng(3), pixel_scale_arcsec=5.0, n_frames=2)
+    b = target_border_px(seq.frames[0])
+    L = np.abs(star_trail_px(seq.frames[0]))
+    np.testing.assert_allclose(b, np.maximum(L / 2 + 3.0, 1.0))
+    seq15 = simulate_sequence(np.random.default_rng(3), n_frames=2)       # 2-px trails
+    np.testing.assert_array_equal(target_border_px(seq15.frames[0]), [1.0, 1.0])
+    from eotrack.pipeline import separate_targets
+
+    with pytest.raises(ValueError, match="border_px"):
+        separate_targets([], border_px=-1.0)
