@@ -463,7 +463,7 @@ def test_touching_texts():
 
 def test_text_over_markers():
     fig, ax = _clean()
-    ax.plot([3, 6, 8], [4, 9, 14], "o", label="objects", **method_style("logic").scatter())
+    ax.plot([3, 6, 8], [4, 9, 14], ls="none", label="objects", **method_style("logic").scatter())
     legend_outside(ax)
     t = ax.text(6, 9, "O4", ha="center", va="center")
     assert "text-over-markers" in _rules(fig)
