@@ -819,6 +819,8 @@ if len(hyp):
     u3, u100 = hyp["worst / lsq, U=3"], hyp["worst / lsq, U=100"]
     partial = hyp["ransac inliers U=3"] < 1
     display(Markdown(
+        "These are the study's own random draws (the prediction table above drew others: "
+        "how large the excess is depends on the draw — that is the point). "
         f"With U = 3 the worse robust predictor is up to {u3.max():.1f}× LSQ (median "
         f"{u3.median():.2f}×) on these {len(hyp)} clean series; with U = 100 up to "
         f"{u100.max():.1f}× (median {u100.median():.2f}×). RANSAC's best of three hypotheses "
