@@ -185,10 +185,9 @@ def plot_frames_schematic(heading_deg: float = 30.0, pitch_deg: float = 12.0,
                             ((0, 0, 1), "U ($Z$)", "k", ":")]:
         ax.plot(*np.c_[o, vec], color=c, ls=ls, lw=1)
         ax.text(*(1.08 * np.asarray(vec)), lab, fontsize=8)
-    # the bow points between north and the optical axis: its label sits along the arrow, to
-    # the side, clear of the two tip labels
-    for i, (lab, at, ha) in enumerate((("starboard $X_B$", 1.1, "left"), ("bow $Y_B$", 0.75, "right"),
-                                       ("deck-up $Z_B$", 1.1, "left"))):
+    # every label beyond its arrow's tip (none on a line; review figs #12b)
+    for i, (lab, at, ha) in enumerate((("starboard $X_B$", 1.1, "left"), ("bow $Y_B$", 1.12, "left"),
+                                       ("deck-up $Z_B$", 1.1, "right"))):
         v = 0.85 * R_nb[i]
         ax.plot(*np.c_[o, v], color="tab:blue", lw=2)
         ax.text(*(at * v), lab, color="tab:blue", fontsize=8, ha=ha)
@@ -198,17 +197,16 @@ def plot_frames_schematic(heading_deg: float = 30.0, pitch_deg: float = 12.0,
     for i, lab in ((0, "$X'$"), (2, "$Z'$")):
         v = 0.45 * R_nc[i]
         ax.plot(*np.c_[bore * 0.6, bore * 0.6 + v], color="tab:red", lw=1)
-        ax.text(*(bore * 0.6 + 1.1 * v), lab, color="tab:red", fontsize=8)
+        ax.text(*(bore * 0.6 + 1.3 * v), lab, color="tab:red", fontsize=8, ha="center",
+                va="center")
     deck = np.array([[-0.3, -0.6, 0], [0.3, -0.6, 0], [0.3, 0.5, 0], [0, 0.75, 0],
                      [-0.3, 0.5, 0], [-0.3, -0.6, 0]]) @ R_nb
     ax.plot(*deck.T, color="tab:blue", alpha=0.5)
     ax.set_xlim(-1, 1)
     ax.set_ylim(-1, 1)
     ax.set_zlim(-0.3, 1.2)
-    ax.set_box_aspect((1, 1, 0.75))
-    ax.set_xticks([])
-    ax.set_yticks([])
-    ax.set_zticks([])
+    ax.set_box_aspect((1, 1, 0.75), zoom=1.45)
+    ax.set_axis_off()                                   # no empty panes around the schematic
     ax.set_title(f"Frames: level N → deck B (ψ {heading_deg:g}°, θ {pitch_deg:g}°, "
                  f"φ {roll_deg:g}°) → camera C\n(β {cam_azimuth_deg:g}°, α "
                  f"{cam_elevation_deg:g}°; angles exaggerated)", fontsize=9)
