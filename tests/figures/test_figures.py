@@ -100,14 +100,21 @@ def sidecar_problems(side: Path, slug: str = "<slug>") -> list[tuple[str, str]]:
                  f"({rec.get('png')!r}): {regen}")]
     sha = hashlib.sha256(png.read_bytes()).hexdigest()
     pkl = side.with_name(f"{stem}.fig.gz")
-    if rec.get("figure") and pkl.is_file():
+    if rec.get("figure") and not pkl.is_file():
+        return [("missing-figure", f"{side.name} names {rec['figure']!r}, which is not there: "
+                 f"{regen}")]
+    if "figure" in rec and not rec["figure"] and not pkl.is_file() \
+            and not rec.get("figure_error"):
+        return [("bad-sidecar", f"{side.name} declares no pickled figure and gives no reason "
+                 f"(figure_error): {regen}")]
+    if pkl.is_file():  # (a pickle beside a sidecar that says none is linted all the same)
         fig = pickle.loads(gzip.decompress(pkl.read_bytes()))
         try:
             drawn = _render_sha(fig, int(rec.get("dpi", 110)))
             if drawn != sha:
                 return [("stale-figure", f"{pkl.name} does not render to the committed "
                          f"{png.name} (sha256 {drawn[:12]}… vs {sha[:12]}…): {regen}")]
-            return [(p.rule, p.message) for p in lint_figure(fig)]
+            return [(p.rule, p.message) for p in lint_figure(fig, bbox="tight")]
         finally:
             import matplotlib.pyplot as plt
 
@@ -217,11 +224,32 @@ def test_sidecar_is_the_saved_figures_verdict(tmp_path):
     assert [r for r, _ in sidecar_problems(side)] == ["stale-figure"]
     write_lint_sidecar(fig, tmp_path / "f.png")
     assert sidecar_problems(side) == []
-    (tmp_path / "f.fig.gz").unlink()  # no figure: the stored verdict, if it is current
+    (tmp_path / "f.fig.gz").unlink()  # no figure (with a reason): the stored verdict, if current
+    rec = {**json.loads(side.read_text()), "figure": None, "figure_error": "too large"}
+    side.write_text(json.dumps(rec))
     assert sidecar_problems(side) == []
-    rec = json.loads(side.read_text())
     side.write_text(json.dumps({**rec, "lint": "0123456789ab"}))
     assert [r for r, _ in sidecar_problems(side)] == ["stale-sidecar"]
+    side.write_text(json.dumps({**rec, "figure": None, "figure_error": None}))  # no reason
+    assert [r for r, _ in sidecar_problems(side)] == ["bad-sidecar"]
+
+
+def test_sidecar_without_its_pickle_fails(tmp_path):
+    """The sidecar names a pickled figure that is not there: fails, whatever its verdict; a
+    pickle beside a sidecar that declares none is linted all the same."""
+    import matplotlib.pyplot as plt
+    from eotrack.repro.report import write_lint_sidecar
+
+    fig, ax = plt.subplots()
+    ax.plot([0, 1], [0, 1])
+    fig.savefig(tmp_path / "f.png", dpi=110, bbox_inches="tight")
+    side = write_lint_sidecar(fig, tmp_path / "f.png")
+    rec = json.loads(side.read_text())
+    side.write_text(json.dumps({**rec, "figure": None, "figure_error": "x", "problems": []}))
+    assert {r for r, _ in sidecar_problems(side)} == {"axis-label", "title"}
+    (tmp_path / "f.fig.gz").unlink()
+    side.write_text(json.dumps({**rec, "problems": []}))
+    assert [r for r, _ in sidecar_problems(side)] == ["missing-figure"]
 
 
 def test_sidecar_of_a_figure_too_large_to_keep(tmp_path, monkeypatch):

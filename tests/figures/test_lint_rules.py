@@ -533,3 +533,55 @@ def test_colour_mapped_scatter_needs_a_colour_bar():
     assert "no-colorbar" in _rules(fig)
     fig.colorbar(sc, label="SNR")
     assert "no-colorbar" not in _rules(fig)
+
+
+# --- review of the second round (revfigs, 16:13) ---
+
+def test_red_green_marker_series_in_the_same_style():
+    """Two marker series in red and green (02's Fig. 4): the fill in the series' own colour is
+    colour, not style, so the deuteranopia check compares them."""
+    fig, ax = plt.subplots()
+    for col, lab in (("tab:green", "correct pair"), ("tab:red", "false pair")):
+        ax.plot([1, 2, 3], np.random.default_rng(0).uniform(0, 1, 3), "o", ls="none",
+                color=col, label=lab)
+    label_axes(ax, x="x", xunit="px", y="y", yunit="px", title="pairs")
+    legend_outside(ax)
+    assert "same-style" in _rules(fig)
+    ax.lines[1].set_marker("s")
+    legend_outside(ax)
+    assert "same-style" not in _rules(fig)
+
+
+def test_an_unrelated_text_does_not_name_a_reference_line():
+    fig, ax = _clean()
+    ax.axhline(12, color="0.4", ls="--")
+    ax.text(5.5, 12.4, "the ramp", ha="center", va="bottom")  # mid-line, another colour
+    assert "unlabelled-reference" in _rules(fig)
+    ax.text(10, 12.2, "limit", ha="right", va="bottom")  # at the line's end
+    assert "unlabelled-reference" not in _rules(fig)
+    fig, ax = _clean()
+    ax.axhline(12, color="C3", ls="--")
+    ax.text(5.5, 12.4, "limit", color="C3", ha="center", va="bottom")  # its own colour
+    assert "unlabelled-reference" not in _rules(fig)
+
+
+def test_raw_superscript():
+    fig, ax = _clean()
+    ax.text(2, 15, "sigma^2 model, chi2 gate")
+    assert "raw-symbol" in _rules(fig)
+    ax.texts[-1].set_text(r"$\sigma^2$ model, $\chi^2$ gate; 10^3 px")
+    assert "raw-symbol" not in _rules(fig)
+
+
+def test_lint_bbox_is_how_the_figure_is_saved():
+    """The verdict follows the bbox given, not the caller's rcParams: a legend placed outside
+    is cut off when the figure is saved without the tight box."""
+    import matplotlib as mpl
+
+    fig, _ = _clean()
+    with mpl.rc_context({"savefig.bbox": "standard"}):
+        loose = {p.rule for p in lint_figure(fig)}
+        assert "clipped-text" not in {p.rule for p in lint_figure(fig, bbox="tight")}
+    assert "clipped-text" in loose
+    with pytest.raises(ValueError, match="bbox"):
+        lint_figure(fig, bbox="loose")

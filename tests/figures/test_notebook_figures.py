@@ -38,7 +38,7 @@ def notebook_paths() -> list[Path]:
 def figure_records(path: Path) -> list[tuple[int, str, dict | None]]:
     """``(cell number, figure's text, lint record or None)`` for every image output of the
     notebook's cells (panels' saved widget images are drawn by figure functions the lint
-    cases cover)."""
+    cases cover). The record gets the stored PNG's size as ``"_stored_px"``."""
     nb = json.loads(path.read_text(encoding="utf-8"))
     out = []
     for i, cell in enumerate(nb.get("cells", [])):
@@ -46,7 +46,42 @@ def figure_records(path: Path) -> list[tuple[int, str, dict | None]]:
             data = o.get("data", {})
             if any(k.startswith("image/") for k in data):
                 text = "".join(data.get("text/plain", "")).strip()
-                out.append((i, text, data.get(LINT_MIMETYPE)))
+                rec = data.get(LINT_MIMETYPE)
+                if rec is not None and "image/png" in data:
+                    rec = {**rec, "_stored_px": _png_size(data["image/png"])}
+                out.append((i, text, rec))
+    return out
+
+
+def _png_size(b64: str | list[str]) -> tuple[int, int]:
+    import base64
+    import io
+
+    from PIL import Image
+
+    raw = base64.b64decode("".join(b64) if isinstance(b64, list) else b64)
+    with Image.open(io.BytesIO(raw)) as im:
+        return im.size
+
+
+def _stored_png_problems(where: str, rec: dict) -> list[tuple[str, str]]:
+    """The record must describe the PNG stored beside it (its size, ±3 px: an edited or swapped
+    image, or a record copied from another figure, fails), and that PNG must fit the book's
+    column (as the committed REPORT PNGs must)."""
+    from eotrack.plotting import BOOK_COLUMN_PX
+    from eotrack.plotting.lint import MIN_BOOK_SCALE
+
+    stored, want = rec.get("_stored_px"), rec.get("png_px")
+    out = []
+    if stored is None:
+        return out
+    if not want or any(abs(a - b) > 3 for a, b in zip(stored, want, strict=True)):
+        out.append(("stale-record", f"{where}: the lint record describes a {want} px PNG, the "
+                    f"stored one is {list(stored)} px; re-execute the notebook"))
+    limit = BOOK_COLUMN_PX / MIN_BOOK_SCALE
+    if stored[0] > limit:
+        out.append(("too-wide", f"{where}: the stored PNG is {stored[0]} px wide: the book shows "
+                    f"it at {100 * BOOK_COLUMN_PX / stored[0]:.0f} % (at most {limit:.0f} px)"))
     return out
 
 
@@ -67,6 +102,7 @@ def notebook_problems(path: Path) -> list[tuple[str, str, list[tuple[str, str]]]
                 problems.append(("stale-lint", f"cell {cell} ({text[:50] or 'figure'}): "
                                  f"verdict of another lint version ({rec.get('lint')}, current "
                                  f"{LINT_VERSION}); re-execute the notebook"))
+            problems += _stored_png_problems(f"cell {cell} ({text[:50] or 'figure'})", rec)
         rows.append((fid, owner, problems))
     return rows
 
@@ -101,7 +137,50 @@ def test_lint_record_of_a_figure():
     ax.set(xlabel="time (s)", ylabel="height (m)", title="a line")
     from eotrack.plotting import LINT_VERSION
 
-    assert figure_lint_record(fig) == {"problems": [], "lint": LINT_VERSION}
+    rec = figure_lint_record(fig)
+    assert rec["problems"] == [] and rec["lint"] == LINT_VERSION
+    import io
+
+    from PIL import Image
+
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", bbox_inches="tight", dpi=fig.dpi)  # as the inline backend
+    assert all(abs(a - b) <= 3 for a, b in zip(rec["png_px"], Image.open(buf).size, strict=True))
+
+
+def test_a_record_must_describe_the_png_beside_it(tmp_path):
+    """A stored figure whose PNG was swapped (or whose record was copied from another figure)
+    fails, and a stored PNG wider than the column fails."""
+    import base64
+    import io
+
+    import matplotlib.pyplot as plt
+    from eotrack.plotting import figure_lint_record
+    from PIL import Image
+
+    def png(w, h):
+        buf = io.BytesIO()
+        Image.new("RGB", (w, h), "white").save(buf, format="png")
+        return base64.b64encode(buf.getvalue()).decode()
+
+    fig, ax = plt.subplots()
+    ax.plot([0, 1], [0, 1])
+    ax.set(xlabel="time (s)", ylabel="height (m)", title="a line")
+    rec = figure_lint_record(fig)
+    w, h = rec["png_px"]
+    nb = {"cells": [{"outputs": [{"data": {"image/png": png(w, h), LINT_MIMETYPE: rec,
+                                            "text/plain": "Figure: a line"}}]}]}
+    path = tmp_path / "01_x.ipynb"
+    path.write_text(json.dumps(nb))
+
+    def problems():
+        (_, _, rec), = figure_records(path)
+        return _stored_png_problems("cell 0", rec)
+
+    assert problems() == []
+    nb["cells"][0]["outputs"][0]["data"]["image/png"] = png(3000, 50)  # swapped, too wide
+    path.write_text(json.dumps(nb))
+    assert {r for r, _ in problems()} == {"stale-record", "too-wide"}
     rec = figure_lint_record("not a figure")
     assert rec["problems"][0][0] == "lint-error" and "TypeError" in rec["problems"][0][1]
 

@@ -303,16 +303,25 @@ LINT_MIMETYPE = "application/vnd.eotrack.figure-lint+json"
 
 def figure_lint_record(fig: Any) -> dict:
     """The lint's verdict on ``fig`` as stored with a notebook's figure output:
-    ``{"problems": [[rule, message], ...], "lint": LINT_VERSION}`` (empty list: the figure
-    passes; ``lint`` names the rules' version); a lint that
-    itself fails is recorded as the problem ``"lint-error"``."""
-    from .lint import LINT_VERSION, lint_figure
+    ``{"problems": [[rule, message], ...], "lint": LINT_VERSION, "png_px": [w, h]}`` (empty
+    list: the figure passes; ``lint`` names the rules' version; ``png_px`` the size of the PNG
+    the inline backend stores — ``bbox_inches="tight"`` at the figure's dpi — so the test can
+    tell that the record belongs to the image beside it). The figure is linted as saved with
+    the tight box. A lint that itself fails is recorded as the problem ``"lint-error"``."""
+    import matplotlib as mpl
 
+    from .lint import LINT_VERSION, _figure_of, _shown_area, lint_figure
+
+    size = None
     try:
-        problems = [[p.rule, p.message] for p in lint_figure(fig)]
+        problems = [[p.rule, p.message] for p in lint_figure(fig, bbox="tight")]
+        f = _figure_of(fig)
+        with mpl.rc_context({"savefig.bbox": "tight"}):
+            area = _shown_area(f, f.canvas.get_renderer())
+        size = [round(area.width), round(area.height)]
     except Exception as exc:  # the record must not break the notebook's output
         problems = [["lint-error", f"{type(exc).__name__}: {exc}"]]
-    return {"problems": problems, "lint": LINT_VERSION}
+    return {"problems": problems, "lint": LINT_VERSION, "png_px": size}
 
 
 def register_figure_descriptions() -> bool:

@@ -28,15 +28,24 @@ from .style import BOOK_WIDTH_IN, MIN_FONT_PT
 __all__ = ["LINT_VERSION", "RULES", "FigureProblem", "effective_font_scale", "lint_figure"]
 
 def _lint_version() -> str:
-    """SHA-256 (12 hex digits) of this module's source: a stored verdict names the lint that
-    wrote it, so a verdict of an older lint can be told from a current one."""
+    """SHA-256 (12 hex digits) of this module's code — its syntax tree with the docstrings left
+    out, so an edit of a comment or a docstring keeps the version: a stored verdict names the
+    rules that wrote it, so a verdict of older rules can be told from a current one."""
+    import ast
     import hashlib
     from pathlib import Path
 
-    return hashlib.sha256(Path(__file__).read_bytes()).hexdigest()[:12]
+    tree = ast.parse(Path(__file__).read_text(encoding="utf-8"))
+    for node in ast.walk(tree):
+        body = getattr(node, "body", None)
+        if (isinstance(body, list) and body and isinstance(body[0], ast.Expr)
+                and isinstance(body[0].value, ast.Constant) and isinstance(body[0].value.value, str)):
+            node.body = body[1:] or [ast.Pass()]
+    return hashlib.sha256(ast.dump(tree).encode()).hexdigest()[:12]
 
 
-#: The version of the lint's rules (hash of ``lint.py``), stored with every verdict.
+#: The version of the lint's rules (hash of ``lint.py``'s code, comments and docstrings left
+#: out), stored with every verdict.
 LINT_VERSION = _lint_version()
 
 #: The lint's rules, in the order they are checked.
@@ -329,7 +338,10 @@ def _style_key(h: Any) -> tuple | None:
         mk = h.get_marker()
         mk = "none" if mk in (None, "None", "none", " ", "") else str(mk)
         mfc = h.get_markerfacecolor()
-        mfc = "none" if isinstance(mfc, str) and mfc.lower() == "none" else c(mfc)
+        if isinstance(mfc, str) and mfc.lower() == "none":
+            mfc = "none"
+        else:  # a fill in the series' own colour is part of its colour, not of its style
+            mfc = "filled" if c(mfc) == c(h.get_color()) else c(mfc)
         return ("line", c(h.get_color()), ls, mk, mfc if mk != "none" else None)
     if isinstance(h, PathCollection):
         fc = h.get_facecolor()
@@ -651,6 +663,9 @@ _GREEK = ("alpha|beta|gamma|delta|epsilon|zeta|eta|theta|iota|kappa|lambda|mu|nu
 #: ``sigma_px``): matplotlib prints the underscore; in mathtext it is a subscript.
 _RAW_SUBSCRIPT = re.compile(rf"(?<![A-Za-z0-9_\\\u0391-\u03c9])(?:[A-Za-z\u0391-\u03c9]{{1,3}}|(?i:{_GREEK}))_"
                             rf"(?:\{{[^}}]*\}}|[A-Za-z0-9]+)")
+#: … or a superscript written as plain text (``sigma^2``, ``x^2``; ``10^3`` is left alone).
+_RAW_SUPERSCRIPT = re.compile(rf"(?<![A-Za-z0-9_\\\u0391-\u03c9])(?:[A-Za-z\u0391-\u03c9]{{1,3}}|"
+                              rf"(?i:{_GREEK}))\^(?:\{{[^}}]*\}}|[A-Za-z0-9]+)")
 _DOLLAR = re.compile(r"(?<!\\)\$")
 
 
@@ -664,12 +679,12 @@ def _plain_parts(s: str) -> list[str]:
 
 
 def _check_raw_symbols(texts: list[Text]) -> list[FigureProblem]:
-    """Text with a symbol's underscore subscript outside ``$…$`` (``P_FA`` beside
-    ``$P_\\mathrm{FA}$``): the reader sees the underscore."""
+    """Text with a symbol's underscore subscript or caret superscript outside ``$…$``
+    (``P_FA`` beside ``$P_\\mathrm{FA}$``, ``sigma^2``): the reader sees the ``_`` or ``^``."""
     out = []
     for t in texts:
         hits = [m.group(0) for part in _plain_parts(t.get_text())
-                for m in _RAW_SUBSCRIPT.finditer(part)]
+                for rx in (_RAW_SUBSCRIPT, _RAW_SUPERSCRIPT) for m in rx.finditer(part)]
         if hits:
             out.append(FigureProblem("raw-symbol", f"{_describe(t)} writes {hits[0]!r} as plain "
                                      f"text; write it in mathtext (e.g. r'$P_\\mathrm{{D}}$')"))
@@ -722,8 +737,10 @@ def _constant_line(line: Line2D) -> tuple[str, float] | None:
 
 def _check_reference_lines(fig: Figure, lines: list[_Line], renderer: Any) -> list[FigureProblem]:
     """A reference line nobody named: an ``axhline``/``axvline`` (a solid one at 0, the axis'
-    own baseline, excepted) or a dashed/dotted constant line, with no legend entry and no text
-    within 25 px of it (a direct label or an annotation). Lines of one look (orientation,
+    own baseline, excepted) or a dashed/dotted constant line, with no legend entry, no
+    annotation arrow at it and no label beside it (a text in the line's colour within 25 px, or
+    a text within 1.2 of its height beside one of the line's ends — within 40 px or 12 % of the
+    line's length of it). Lines of one look (orientation,
     colour, style, width) count as one: a ±27″ pair is named when one of them is; three or
     more of one look at equal spacing are a grid (cell boundaries), not reference lines. A
     line in a series' colour is named by a grey style key of its line style in a legend
@@ -766,9 +783,19 @@ def _check_reference_lines(fig: Figure, lines: list[_Line], renderer: Any) -> li
                          and _hue_key(line.get_color()) is not None))
             along, across = (0, 1) if const[0] == "h" else (1, 0)
             for ln in [] if named else notes:
+                # a label of the line: in its colour within 25 px, or (any colour) beside it —
+                # within 1.2 of its own height across — at one of its ends; an unrelated text
+                # somewhere along the line does not name it
                 r0, r1 = ln.rect.min(axis=0), ln.rect.max(axis=0)
                 gap = max(0.0, r0[across] - hi[across], lo[across] - r1[across])
-                if gap <= 25 and r1[along] >= lo[along] - 25 and r0[along] <= hi[along] + 25:
+                overlaps = r1[along] >= lo[along] - 25 and r0[along] <= hi[along] + 25
+                same_colour = _c(ln.text.get_color()) == _c(line.get_color())
+                size = (r1 - r0)[across] if const[0] == "h" else (r1 - r0)[along]
+                at_end = min(abs(r0[along] - hi[along]), abs(r1[along] - lo[along]),
+                             abs(r1[along] - hi[along]), abs(r0[along] - lo[along])) <= max(
+                    40.0, 0.12 * (hi[along] - lo[along]))
+                if overlaps and ((same_colour and gap <= 25)
+                                 or (gap <= max(4.0, 1.2 * size) and at_end)):
                     named = True
                     break
                 if isinstance(ln.text, Annotation) and ln.text.arrow_patch is not None:
@@ -1017,7 +1044,8 @@ def _check_colour_mapped(fig: Figure) -> list[FigureProblem]:
     return out
 
 
-def lint_figure(fig: Any, *, rules: tuple[str, ...] = RULES) -> list[FigureProblem]:
+def lint_figure(fig: Any, *, rules: tuple[str, ...] = RULES,
+                bbox: str | None = None) -> list[FigureProblem]:
     """Draw ``fig`` and return its readability problems (empty list: it passes).
 
     Parameters
@@ -1026,6 +1054,11 @@ def lint_figure(fig: Any, *, rules: tuple[str, ...] = RULES) -> list[FigureProbl
         What a figure function returned; an Axes (or array of them) stands for its figure.
     rules : tuple of str
         The rules to check (default all of :data:`RULES`).
+    bbox : {"tight", "standard"} or None
+        How the figure is saved (``savefig``'s ``bbox_inches``: what is shown, how wide it is);
+        default the current ``rcParams["savefig.bbox"]``. Pass ``"tight"`` for a figure saved
+        with ``bbox_inches="tight"`` (REPORT figures, notebook outputs) whatever the caller's
+        rcParams.
 
     Returns
     -------
@@ -1041,6 +1074,13 @@ def lint_figure(fig: Any, *, rules: tuple[str, ...] = RULES) -> list[FigureProbl
     unknown = set(rules) - set(RULES)
     if unknown:
         raise ValueError(f"unknown rules {sorted(unknown)}; allowed: {RULES}")
+    if bbox not in (None, "tight", "standard"):
+        raise ValueError(f"bbox must be 'tight', 'standard' or None, got {bbox!r}")
+    if bbox is not None:
+        import matplotlib as mpl
+
+        with mpl.rc_context({"savefig.bbox": bbox if bbox == "tight" else "standard"}):
+            return lint_figure(fig, rules=rules)
     fig = _figure_of(fig)
     renderer, texts, lines = _draw_recording(fig)
     scale = effective_font_scale(fig, renderer)

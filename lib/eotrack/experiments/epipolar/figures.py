@@ -226,6 +226,19 @@ def plot_frame_chain(scenario: Scenario, k: int = 0, *, fig=None):
         ax.set_xlim(-1, 1)
         ax.set_ylim(-1, 1)
         ax.set_zlim(-1, 1)
+        # a view per panel in which the frame's three axes point apart on screen (in one view
+        # for all, the body's and the sensor's z ran along their x: label and arrow hidden)
+        def spread(elev, azim, ax=ax, R=R):
+            ax.view_init(elev=elev, azim=azim)
+            o = np.array(proj3d.proj_transform(0, 0, 0, ax.get_proj())[:2])
+            d = [np.array(proj3d.proj_transform(*row, ax.get_proj())[:2]) - o for row in R]
+            ang = [np.degrees(np.arctan2(*v[::-1])) for v in d]
+            gaps = [abs((ang[i] - ang[j] + 180) % 360 - 180) for i in range(3) for j in range(i)]
+            short = min(np.hypot(*v) for v in d) / max(np.hypot(*v) for v in d)
+            return min(gaps) * min(1.0, 2 * short)
+
+        views = [(e, az) for e in (30, 20, 40, 10) for az in range(-60, 300, 15)]
+        ax.view_init(*max(views, key=lambda v: spread(*v)))
         placed: list[np.ndarray] = []
         for row, col, lab in zip(R, ("tab:red", "tab:green", "tab:blue"), "xyz"):
             ax.quiver(0, 0, 0, *row, color=col, lw=2, arrow_length_ratio=0.15)
