@@ -580,3 +580,33 @@ def test_camera_frame_model_and_bad_input():
         camera_frame(rng, 64, margin=32)
     with pytest.raises(ValueError, match="noise"):
         camera_frame(rng, 64, 3, sky=0.0, read_noise=0.0)
+
+
+def test_hot_pixels_without_stars_are_not_returned():
+    """A starless frame with hot pixels (dark frame, a cloud-occluded sky): no peak passes the
+    nominal sharpness cut, and the PSF σ fitted to the hot pixels themselves (0.40 px) used to
+    switch the sharpness flag off — 43-269 hot pixels returned as stars (review 28 round 4 #1)."""
+    from eotrack.imaging import camera_frame
+    rng = np.random.default_rng(41)
+    n = 0
+    for sky, nhot in ((20.0, 300), (0.3, 300), (100.0, 100)):
+        f = camera_frame(rng, 1024, 0, sky=sky, bias=300.0).image.astype(np.float64)
+        yy, xx = rng.integers(2, 1022, nhot), rng.integers(2, 1022, nhot)
+        f[yy, xx] += rng.uniform(20, 2000, nhot)
+        n += len(extract_stars(f.astype(np.uint16)).xy)
+    assert n <= 3
+
+
+def test_skewed_noise_with_a_large_sigma_in_steps():
+    """Gain < 1 e⁻/DN (a comb of Gaussians, σ of several DN but Poisson-skewed) and a low-count
+    frame minus a float master bias (lattice 1/16 DN): σ > 3 steps, where only the Gaussian
+    threshold ran — 1.4-5.3 per 10⁶ px (review 28 round 4 #2); <= 1 now."""
+    from eotrack.imaging import camera_frame
+    rng = np.random.default_rng(42)
+    frames = [camera_frame(rng, 1024, 0, sky=sky, read_noise=rn, gain=g, bias=bias).image
+              for g, sky, rn, bias in ((0.1, 0.2, 0.5, 100.0), (0.25, 2.0, 1.0, 0.0))]
+    raw = camera_frame(rng, 1024, 0, sky=0.3, read_noise=0.4, bias=100.0).image
+    master = np.mean([np.round(100 + 0.4 * rng.standard_normal(raw.shape)) for _ in range(16)],
+                     axis=0)
+    frames.append((raw - master).astype(np.float32))
+    assert sum(len(extract_stars(im).xy) for im in frames) <= 3

@@ -222,10 +222,13 @@ class SkyConfig:
     ``papers_repro/akf_star/bench_extraction.txt``): 1,600–4,200 false detections per 10⁶ px
     before, ≲ 0.03 after, over σ = 0.2–4 Δ, eight sub-step offsets and four
     gain/offset/dtype combinations; on frames with stars see ``bench_quantised_stars``
-    there. A few patched pixels (an interpolated column) keep the lattice. Not covered: frames whose
-    lattice is broken per pixel (bias-subtracted with a float master bias, flat-fielded),
-    correlated noise and non-Gaussian discrete data (low-count Poisson frames have the count
-    test above) — measure the rate on a blank frame of your own data.
+    there. Skewed noise the Gaussian model misses (low counts on a bias, gain < 1 e⁻/DN, a float
+    master bias subtracted) is caught by an empirical guard: the exact tail of each mesh's own
+    histogram, from pixels whose neighbours are quiet (review 28 #13: Poisson sky 0.3 e⁻ + bias
+    100 gave 7–12 per 10⁶ px, now 0; ``bench_low_count_bias``). Up to ~20 % patched pixels keep
+    the lattice (:func:`eotrack.imaging.quantisation_step`). Not covered: continuous-valued
+    frames with skewed noise (flat-fielded low-count data), correlated noise — measure the rate
+    on a blank frame of your own data.
     """
 
     thresh: float = 4.5
@@ -542,6 +545,12 @@ _EMP_RING_NSIGMA = 2.5
 _EMP_MASK_GROW = 3
 _EMP_MASK_FACTOR = 2.0
 _EMP_MIN_PIXELS = 512
+#: the histogram's range: ``_EMP_KMAX_NSIGMA`` clipped σ + 3 steps, at most ``_EMP_KMAX``
+_EMP_KMAX_NSIGMA = 6.0
+_EMP_KMAX = 24
+#: frames with σ above ``_QUANTISED_MAX_RATIO`` steps: the empirical guard alone, on a lattice
+#: of ``m`` steps, ``m`` the largest integer with ``m Δ <= σ / _EMP_COARSE_PER_SIGMA``
+_EMP_COARSE_PER_SIGMA = 2.0
 
 
 def _quantised_noise(img: np.ndarray, bg: Any, cfg: BackgroundConfig, thresh: float,
@@ -562,8 +571,8 @@ def _quantised_noise(img: np.ndarray, bg: Any, cfg: BackgroundConfig, thresh: fl
       from the pixels that are neither within ``_EMP_MASK_GROW`` px of a bright source (filtered
       value above twice the Gaussian threshold) nor have their 8 neighbours summing more than ``_EMP_RING_NSIGMA`` σ above the
       background (a star's pixels have bright neighbours; for independent noise this condition
-      leaves the pixel's own distribution unchanged), and within ``nsigma`` clipped σ + 2 steps
-      of the level. It catches noise the Gaussian model does not describe: skewed counts under
+      leaves the pixel's own distribution unchanged), and within 6 clipped σ + 3 steps of the
+      level. It catches noise the Gaussian model does not describe: skewed counts under
       a bias (Poisson sky of 0.3 e⁻ on a bias of 100 DN: the model alone let 7–12 false
       detections per 10⁶ px through, review 28 #13) — the histogram of ALL values (the first
       version) counted star wings as noise and lost most stars at peak SNR 3–6.
@@ -572,14 +581,25 @@ def _quantised_noise(img: np.ndarray, bg: Any, cfg: BackgroundConfig, thresh: fl
     (pixels independent); the level is the smallest ``s`` with ``P(S > s) ≤ Φ̄(thresh)`` — the
     Gaussian tail probability the threshold means on continuous data — half a step above it.
     The floor is that level over ``thresh`` (``det > thresh · noise`` then reads ``S > s``);
-    meshes are median-filtered and interpolated like the background. Continuous data (Δ = 0)
-    or σ > 3 Δ: None (the Gaussian threshold holds).
+    meshes are median-filtered and interpolated like the background. On a lattice frame with
+    σ > 3 Δ only the empirical level is used, on a lattice of ``m Δ ≈ σ/2`` (skewed noise with
+    a large σ in steps: gain < 1 e⁻/DN, a float master bias subtracted — review 28 round 4 #2).
+    Continuous data (Δ = 0): None (the Gaussian threshold holds). Of the histogram's cuts, the
+    ring cut does not depend on the pixel's own value; the far cut (6 σ + 3 steps) and the
+    bright-source mask (2× the Gaussian threshold) do, but remove far less of the noise's own
+    tail than the tail probability the level is set at.
     """
     from scipy.special import ndtr
 
     delta = float(bg.quantum)
-    if delta <= 0 or float(bg.global_rms) > _QUANTISED_MAX_RATIO * delta:
+    if delta <= 0:
         return None
+    coarse = float(bg.global_rms) > _QUANTISED_MAX_RATIO * delta
+    if coarse:
+        if det is None or noise is None:
+            return None
+        # a Gaussian-looking lattice: the empirical guard alone, on a coarser lattice
+        delta *= max(1, int(float(bg.global_rms) / (_EMP_COARSE_PER_SIGMA * delta)))
     H, W = img.shape
     m = min(cfg.mesh, H, W)
     ny, nx = -(-H // m), -(-W // m)
@@ -592,14 +612,18 @@ def _quantised_noise(img: np.ndarray, bg: Any, cfg: BackgroundConfig, thresh: fl
     z0 = float(u[np.argmax(cnt)])                 # the most frequent value: a lattice point
     ref = z0 + delta * np.rint((b - z0) / delta)              # lattice point nearest the level
     mu = (b - ref) / delta                                    # in steps, |mu| <= 1/2
-    ts, tf, tm, tsd = _rounded_gaussian_table()
-    cost = (np.abs(mu)[:, None] - tm[None, :]) ** 2 + (r[:, None] - tsd[None, :]) ** 2
-    j = np.argmin(cost, axis=1)
-    sig, f = ts[j], np.sign(mu) * tf[j]
-    K = int(np.clip(np.ceil(6 * sig.max() + 1), 2, 20))
-    k = np.arange(-K, K + 1)
-    pmf = ndtr((k + 0.5 - f[:, None]) / sig[:, None]) - ndtr((k - 0.5 - f[:, None]) / sig[:, None])
-    s_star = _tail_steps(pmf, K, thresh)
+    if coarse:
+        s_star = np.full(len(b), -(16 * _EMP_KMAX + 1))
+    else:
+        ts, tf, tm, tsd = _rounded_gaussian_table()
+        cost = (np.abs(mu)[:, None] - tm[None, :]) ** 2 + (r[:, None] - tsd[None, :]) ** 2
+        j = np.argmin(cost, axis=1)
+        sig, f = ts[j], np.sign(mu) * tf[j]
+        K = int(np.clip(np.ceil(6 * sig.max() + 1), 2, 20))
+        k = np.arange(-K, K + 1)
+        pmf = (ndtr((k + 0.5 - f[:, None]) / sig[:, None])
+               - ndtr((k - 0.5 - f[:, None]) / sig[:, None]))
+        s_star = _tail_steps(pmf, K, thresh)
     if det is not None and noise is not None:
         s_emp = _empirical_tail_steps(img, cfg, thresh, det,
                                       noise * np.float32(_EMP_MASK_FACTOR * thresh),
@@ -620,23 +644,27 @@ def _empirical_tail_steps(img: np.ndarray, cfg: BackgroundConfig, thresh: float,
     """The empirical level of :func:`_quantised_noise` per mesh, in 1/16 steps over ``ref``
     (very low where a mesh has too few clean pixels: the model level then holds)."""
     H, W = img.shape
-    iy = np.minimum(np.arange(H) // m, ny - 1)
-    ix = np.minimum(np.arange(W) // m, nx - 1)
-    mesh = (iy[:, None] * nx + ix[None, :])
-    d = np.rint((img - ref.astype(np.float32)[mesh]) / np.float32(delta))
+
+    def per_pixel(v: np.ndarray, dt: Any = np.float32) -> np.ndarray:
+        grid = np.asarray(v).reshape(ny, nx).astype(dt)
+        return np.repeat(np.repeat(grid, m, axis=0), m, axis=1)[:H, :W]
+
+    d = np.rint((img - per_pixel(ref)) * np.float32(1.0 / delta))
     ring = cv2.boxFilter(d, -1, (3, 3), normalize=False, borderType=cv2.BORDER_REFLECT) - d
-    mu = ((b - ref) / delta).astype(np.float32)[mesh]
-    sd = np.sqrt(r * r + 1.0 / 12.0).astype(np.float32)[mesh]
-    keep = ring <= 8 * mu + np.float32(_EMP_RING_NSIGMA * np.sqrt(8.0)) * sd
+    sd = np.sqrt(r * r + 1.0 / 12.0)
+    cut = 8 * (b - ref) / delta + _EMP_RING_NSIGMA * np.sqrt(8.0) * sd
+    keep = ring <= per_pixel(cut)
     src = (det > level).view(np.uint8)
     g = 2 * _EMP_MASK_GROW + 1
     keep &= cv2.dilate(src, np.ones((g, g), np.uint8)) == 0
-    kmax = np.ceil(cfg.nsigma * np.sqrt(r * r + 1.0 / 12.0) + 2.0).astype(np.int64)
-    K = int(min(kmax.max(), 20))
-    di = d.astype(np.int64)
-    keep &= np.abs(di) <= kmax[mesh]
+    # far cut (the noise's own tail beyond it is < 1e-7 for counts up to a few per pixel; a
+    # 3σ cut dropped 1-7e-5 of it, more than the tail probability the level is set at)
+    kmax = np.minimum(np.ceil(_EMP_KMAX_NSIGMA * sd + 3.0), _EMP_KMAX)
+    K = int(kmax.max())
+    keep &= np.abs(d) <= per_pixel(kmax)
     nm = ny * nx
-    idx = mesh[keep] * (2 * K + 1) + di[keep] + K
+    mesh = per_pixel(np.arange(nm) * (2 * K + 1) + K, np.int32)
+    idx = mesh[keep] + d[keep].astype(np.int32)
     hist = np.bincount(idx, minlength=nm * (2 * K + 1)).reshape(nm, 2 * K + 1).astype(float)
     tot = hist.sum(axis=1)
     pmf = hist / np.maximum(tot, 1.0)[:, None]
@@ -752,6 +780,13 @@ def shape_flags(sub: Any, det: Any, peaks: Any, rms: Any, psf_sigma: float, *,
 #: sharpness above which a peak is left out of the PSF σ estimate (a centred Gaussian of
 #: σ = 0.6 px has 2.16; a single hot pixel 4, a two-pixel cosmic-ray hit 2.3)
 _SHARP_FOR_PSF = 2.0
+#: when no peak passes ``_SHARP_FOR_PSF``: the cut for a second try (σ = 0.5 px: 2.87; a hot
+#: pixel 4), then the nominal σ; an estimated σ is never below ``_PSF_SIGMA_MIN`` (review 28,
+#: round 4 #1: a starless frame with hot pixels set σ = 0.40 px from them, which switched the
+#: sharpness flag off and returned the hot pixels as stars)
+_SHARP_FALLBACK = 3.0
+_PSF_SIGMA_NOMINAL = 1.0
+_PSF_SIGMA_MIN = 0.6
 
 
 def _extract_sky(img: np.ndarray, cfg: SkyConfig) -> ExtractionResult:
@@ -786,13 +821,17 @@ def _extract_sky(img: np.ndarray, cfg: SkyConfig) -> ExtractionResult:
     if cfg.psf_sigma is None:
         # sharpness at a nominal σ first: hot pixels and cosmic rays (often the brightest
         # peaks of a raw frame) must not set the PSF σ
-        sharp0, _, _ = shape_flags(sub, det, peaks, bg.rms, 1.0)
+        sharp0, _, _ = shape_flags(sub, det, peaks, bg.rms, _PSF_SIGMA_NOMINAL)
         cand = np.flatnonzero(sharp0 <= _SHARP_FOR_PSF)
         if len(cand) == 0:
-            cand = np.arange(len(peaks))
-        order = cand[np.argsort(-pk[cand], kind="stable")]
-        skip = len(order) // 10                      # the brightest may be saturated
-        sigma = estimate_psf_sigma(sub, peaks[order[skip: skip + 50]])
+            cand = np.flatnonzero(sharp0 <= _SHARP_FALLBACK)
+        if len(cand) == 0:                           # hot pixels only: nothing to fit
+            sigma = _PSF_SIGMA_NOMINAL
+        else:
+            order = cand[np.argsort(-pk[cand], kind="stable")]
+            skip = len(order) // 10                  # the brightest may be saturated
+            sigma = max(estimate_psf_sigma(sub, peaks[order[skip: skip + 50]]),
+                        _PSF_SIGMA_MIN)
     else:
         sigma = cfg.psf_sigma
     sharp, rnd, flags = shape_flags(sub, det, peaks, bg.rms, sigma,
