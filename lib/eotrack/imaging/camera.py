@@ -6,7 +6,9 @@ Model, in electrons then DN: ``e = Poisson(stars + sky) + N(0, read_noise²)``,
 ``dtype``, clipped to its range (the ADC saturates). Stars are Gaussian spots of PSF σ
 ``psf_sigma`` (pixel-integrated, :func:`eotrack.imaging.render_gaussian_spots`) at uniform
 positions with a peak SNR uniform in ``snr_range``; the peak SNR is measured against the sky and
-read noise, ``flux = SNR · sqrt(sky + read_noise²) · 2π σ²`` electrons.
+read noise BEFORE the ADC, ``flux = SNR · sqrt(sky + read_noise²) · 2π σ²`` electrons:
+rounding adds ``gain²/12`` e⁻² (at gain 16 e⁻/DN on sky 20 e⁻ and read noise 3 e⁻ the peak SNR
+after the ADC is 0.76× the stated one).
 """
 
 from __future__ import annotations

@@ -576,6 +576,9 @@ def _quantised_noise(img: np.ndarray, bg: Any, cfg: BackgroundConfig, thresh: fl
       a bias (Poisson sky of 0.3 e⁻ on a bias of 100 DN: the model alone let 7–12 false
       detections per 10⁶ px through, review 28 #13) — the histogram of ALL values (the first
       version) counted star wings as noise and lost most stars at peak SNR 3–6.
+      The ring cut does not remove the wings of faint stars whose neighbours are faint too: in
+      crowded low-count fields (3,000 stars per 1024², sky 0.3 e⁻) completeness at peak SNR 3–4
+      drops 0.28 → 0.18 with the guard (review 28 round 4 #9), ≤ 0.01 in sparse fields.
 
     For each pmf the distribution of ``S = Σ w_j d_j`` (w = 16 · kernel, integers) is exact
     (pixels independent); the level is the smallest ``s`` with ``P(S > s) ≤ Φ̄(thresh)`` — the
