@@ -244,7 +244,8 @@ fig = TH.plot_rho_theta_votes(scene, cfg, target=1)
 #   search off (`accel_px_s2 = 0`);
 # * on a clutter burst or accelerating tracks the default switches to a batch **growth
 #   engine** (Beyond, held-out family); on the paper's scenes it does not fire, so their "ours"
-#   numbers are the causal engine's.
+#   tracks are the causal engine's — not their time: on uncrowded frames the default also runs
+#   the growth engine to look for accelerating tracks in its result.
 #
 # The gate defaults (`v_max` = 240 px/s) are the paper's 512 px scale; a wider field needs a
 # wider gate.
@@ -271,7 +272,7 @@ display(Markdown(f"χ² = {chi_contrast:.2f} (threshold {thr:.2f} at α = {pl_cf
 ours_mh = ModifiedHoughInitiator(sigma_px=cfg.sigma_px)
 run = ours_mh.run(scene.frames, log=True)
 print("object → confirmation frame index:", TH.score_tracks(run.tracks, scene)["confirm_frame"])
-pd.DataFrame(run.log).fillna("–")
+pd.DataFrame(run.log).astype(object).fillna("–")
 
 # %% [markdown]
 # ### 4.6 The chance rate of the 3-of-4 rule
@@ -772,13 +773,21 @@ display(Markdown(
     "candidates (at load < 2.5)."))
 
 # %% [markdown]
-# The decisive runs so far, each from the stored record of
+# Every decisive run so far, one seed per code version — the code was revised after each
+# failure, so the last success must be read against this count. The first two from
+# `TH.HELDOUT_EARLY_RUNS`, the others from the stored records of
 # `benchmarks/bench_track_init_hough.py --record` (60 scenes per seed; the default
 # `ModifiedHoughInitiator(v_min=3, v_max=240)` against logic 3/4 on the same scenes):
 
 # %%
 _dir = papers_repro_dir() / TH.SLUG
 hist_rows, rec = [], None
+for _e in TH.HELDOUT_EARLY_RUNS:  # recorded before the JSON records existed
+    _rm = _e["recall"] >= TH.HELDOUT_TARGETS["recall"]
+    _fm = (None if _e["logic 3/4 false"] is None
+           else _e["false per scene"] <= _e["logic 3/4 false"])
+    hist_rows.append({**_e, "recall met": _rm, "false met": _fm,
+                      "criterion met": bool(_rm and _fm)})
 for _code, _fname in (("1fbbc7c", "heldout_benchmark_1fbbc7c.json"),
                       ("64e5a2f", "heldout_benchmark_64e5a2f.json"),
                       (TH.HELDOUT_CODE, "heldout_benchmark.json")):
@@ -843,15 +852,15 @@ if rec is not None:
 hist.round(3)
 
 # %%
-_h = hist.set_index("code")
-if "64e5a2f" in _h.index and TH.HELDOUT_CODE in _h.index:
-    _a, _b = _h.loc["64e5a2f"], _h.loc[TH.HELDOUT_CODE]
+_c200 = hist["causal ms/frame at 200"].dropna() if "causal ms/frame at 200" in hist else []
+if len(_c200) >= 2:
     display(Markdown(
         f"At 200 uniform candidates the frames are crowded, so the default runs the causal "
-        f"engine, unchanged since 64e5a2f: {_b['causal ms/frame at 200']:.2f} ms in this record "
-        f"(load {_b['load']}) against {_a['causal ms/frame at 200']:.2f} ms in 64e5a2f's (load "
-        f"{_a['load']}) — the CPU times moved with the machine (another job ran on the second "
-        "core), and the criterion counts the measurement as it was made."))
+        f"engine, whose code is the same in all {len(_c200)} records: it took "
+        f"{_c200.min():.2f}–{_c200.max():.2f} ms per frame across them. So the run-to-run spread "
+        "of this machine spans the 5 ms target, and the load rule does not make that part "
+        "decidable; the criterion counts the measurement as it was made (cause of the spread "
+        "not traced)."))
 
 # %% [markdown]
 # Earlier codes: 1fbbc7c (growth always on) changed the paper's scenes; 64e5a2f ran the growth
@@ -1034,7 +1043,11 @@ if answer is not None:
 #
 # **Reviews.** Round 1 (issue 27): 18 findings, 15 fixed or answered, 3 left (two now in
 # Beyond). Round 2: 14 findings, 13 fixed, 1 left (the 5-seed stability, since re-run: 5/5 in
-# the header). Round 3 (independent, this session): REVIEW3_COUNTS.
+# the header). Round 3 (independent, this session, two passes): 29 findings (3 high, 6 medium,
+# 20 low): 20 fixed, 2 in part (the chance formula's range, the word count), 2 answered (the
+# growth engine documented as offline; the capstone's SIAP is the capstone's), 5 left (held-out
+# variants, Fig. 3 colours, the five methods' timing table, prose length, an exploratory label on
+# the chance-rate claim).
 # **Held-out target** (Beyond, from the stored records):
 
 # %%
@@ -1049,7 +1062,8 @@ if len(hist):
         f"{'met' if _last['criterion met'] else '**not met**'}. Earlier decisive runs: "
         + "; ".join(f"{r['code']} {'met' if r['criterion met'] else 'not met'}"
                     for _, r in hist.iloc[:-1].iterrows())
-        + " (1fbbc7c's growth was always on and changed the paper's scenes)."))
+        + f" — {len(hist)} decisive seeds for {len(hist)} code versions (1fbbc7c's growth was "
+        "always on and changed the paper's scenes)."))
 
 # %% [markdown]
 # ## 13 · References

@@ -58,6 +58,7 @@ from .figures import (
 )
 from .scenario import (
     HELDOUT_CODE,
+    HELDOUT_EARLY_RUNS,
     HELDOUT_OPTS,
     HELDOUT_SEED,
     HELDOUT_SEED_FIRST,
@@ -102,6 +103,7 @@ __all__ = [
     "EXPLORE_CLUTTER",
     "EXPLORE_SCENES",
     "HELDOUT_CODE",
+    "HELDOUT_EARLY_RUNS",
     "HELDOUT_OPTS",
     "HELDOUT_SEED",
     "HELDOUT_SEED_FIRST",
