@@ -269,6 +269,17 @@ def test_bad_input_clouded_frame_and_unresolved_objects_do_not_stop_the_night():
     n_ok = sum(not t["unresolved"] and t["cat_obj"] >= 0 for r in res for t in r.tracks)
     assert sum(len(v) for v in series["catalogue"].values()) == n_ok
     assert len(C.associate_tracklets(plan, res)) == 0
+    # 3–5 PSF σ apart (≈ 3.4 px): resolved and kept, with a warning naming the frame
+    near = C.ClusterMember(28626, d_mean_anomaly_deg=0.015)
+    _, res_n = _bursts(C.with_changes(QUICK, cluster=(near,), cloud_frames=()),
+                       keep=lambda b: b.station == 0, limit=1)
+    warn = [f for r in res_n for f in r.failures if f[1] == "association (warning)"]
+    assert warn and all("may pull" in f[2] and "28626" in f[2] for f in warn)
+    assert not any(t["unresolved"] for r in res_n for t in r.tracks)
+    # a night whose only tracklets were withheld as unresolved says so (not "same times?")
+    with pytest.raises(ValueError, match=r"stage 'association': all \d+ tracklets were left "
+                                         r"out as unresolved \(objects 28626 and 28626\+"):
+        C.run_night(cfg, runner=_replay([r for r in res]))
 
 
 def _replay(bursts) -> TrialRunner:

@@ -114,7 +114,7 @@ assert check("capstone.4", answer)
 # wrong track: the predictors follow it, and the error is about the companions' separation.
 # Mixed series are different: a minimal sample that takes points from two tracks is fitted by
 # a strongly curved sinusoid-plus-drift (or, with two points at one instant, is degenerate — the
-# `note` column), which extrapolates far through an hour of eclipse; with only a handful of
+# prediction table's `note` column), which extrapolates far through an hour of eclipse; with only a handful of
 # points per track no sample's consensus clearly beats the others, so RANSAC and WRANSAC can
 # keep such a fit, while least squares averages all points into one smooth compromise whose
 # error stays of the order of the separations. A is geometry, independent of the sky; C fails

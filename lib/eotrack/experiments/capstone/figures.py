@@ -24,6 +24,7 @@ from .pipeline import (
     PREDICTORS,
     NightResult,
     _stars_for_burst,
+    paired_orbit_curve,
     render_frame,
 )
 from .scenario import NightPlan, camera_matrix
@@ -186,7 +187,7 @@ def frame_example(plan: NightPlan, index: int, seed: int = 0) -> dict:
     return {"image": imgs[0], "xy": m0.xy, "catalogue": m0.is_catalogue, "candidate": cand[0],
             "star_xy": ss, "star_xy_believed": sb, "target_xy": b.target_xy[:, 0],
             "drift": drift, "burst": b, "solution": m0.solution,
-            "names": [plan.names[o] for o in b.objs]}
+            "names": [plan.names[o] for o in b.objs], "station": cfg.stations[b.station].name}
 
 
 def plot_frame(example: dict, *, ax: plt.Axes | None = None) -> plt.Axes:
@@ -200,7 +201,7 @@ def plot_frame(example: dict, *, ax: plt.Axes | None = None) -> plt.Axes:
     sol = example.get("solution")
     fitted = f"; {sol.n_matched} of them in the plate fit" if sol is not None else ""
     ax.scatter(*xy[cat].T, s=28, facecolors="none", edgecolors=ON_IMAGE["star"], lw=0.7,
-               marker="o", label=f"at a Gaia star of the solved plate ({int(cat.sum())}{fitted})")
+               marker="o", label=f"at a catalogue star of the solved plate ({int(cat.sum())}{fitted})")
     ax.scatter(*xy[mov].T, s=10, color=ON_IMAGE["candidate"], lw=0, marker="o", alpha=0.6,
                label=f"star: fixed on the sky in a neighbouring frame ({int(mov.sum())})")
     ax.scatter(*xy[cand].T, s=160, marker="s", facecolors="none",
@@ -245,7 +246,8 @@ def plot_frame(example: dict, *, ax: plt.Axes | None = None) -> plt.Axes:
     b = example.get("burst")
     label_axes(ax, x="x", xunit="px", y="y", yunit="px",
                title="First frame of a burst and what the chain makes of its detections"
-               + (f"\n(station {b.station + 1}, field of object {b.obj + 1}, visit "
+               + (f"\n({example.get('station', f'station {b.station + 1}')}, field of "
+                  f"{example['names'][0] if 'names' in example else b.obj + 1}, visit "
                   f"{b.visit + 1}; plate solution RMS {example['solution'].rms_arcsec:.2f}″)"
                   if b is not None and "solution" in example else ""))
     # a dark legend box: the image's overlay colours are made to show on black
@@ -277,11 +279,14 @@ def plot_budget(result: NightResult, *, axes=None):
             **series_styles(1)[0].bar(hatch=""))
     label_axes(a1, x="triangulated − SGP4 range", xunit="km", y="associated pairs",
                title="Triangulation: range error")
-    pr = [val.get(f"prediction · {key}: RMS error through the eclipse", np.nan)
-          for _, key in _PRED]
-    a0.figure.suptitle("Error budget of the night\nprediction RMS through the eclipse: "
-                       + ", ".join(f"{'orbit' if m == 'orbit' else method_style(m).name} "
-                                   f"{v:.1f}″" for (m, _), v in zip(_PRED, pr, strict=True)))
+    orb, cur = paired_orbit_curve(result.prediction) if len(result.prediction) else ([], [])
+
+    def rms(x):
+        return float(np.sqrt(np.mean(np.square(x)))) if len(x) else np.nan
+
+    a0.figure.suptitle("Error budget of the night\nprediction RMS through the eclipse "
+                       f"({len(orb)} cases both predict):\norbit {rms(orb):.1f}″, best curve "
+                       f"{rms(cur):.1f}″")
     return axes
 
 

@@ -100,6 +100,7 @@ TRUTH_PX = 2.0      # a detection within this of a true object is that object (s
 CORRELATE_PX = 6.0  # a tracklet within this of an object's TLE prediction is that object
 GATE_ALPHA = 0.01   # the epipolar gate: a true pair falls outside it with probability α
 RATE_MARGIN = 1.5   # velocity gate = margin × the fastest expected rate (and ≥ 2 px per burst)
+BLEND_SIGMA = 5.0   # TLE separations 3–5 PSF σ: resolved, but a warning names the frame
 
 
 def burst_index(rng: np.random.Generator) -> int:
@@ -374,7 +375,8 @@ def _initiator(cfg: CapstoneConfig, v_max: float) -> ModifiedHoughInitiator:
     # and would only admit chance tracks (and cost ~1 s per frame here).
     return ModifiedHoughInitiator(d_rho=3.0, d_theta_deg=10.0, d_v=v_max / 10.0, v_min=0.0,
                                   v_max=v_max, m=min(cfg.burst_frames, 4), handoff_gate_px=3.0,
-                                  sigma_px=0.3, accel_px_s2=0.0)
+                                  sigma_px=pipeline_config(cfg, v_max).initiator_sigma_px,
+                                  accel_px_s2=0.0)
 
 
 # ------------------------------------------------------------------ one burst
@@ -477,6 +479,13 @@ def observe_burst(rng: np.random.Generator, plan: NightPlan) -> BurstResult:
         for a_ in range(n_o):
             for c_ in range(a_ + 1, n_o):
                 sep = float(np.hypot(*(pxy[a_] - pxy[c_])))
+                if BLEND_SIGMA * cfg.psf_sigma_px > sep >= 3.0 * cfg.psf_sigma_px and \
+                        in_f[[a_, c_]].all() and sunlit[[a_, c_]].all():
+                    failures.append((frame_id(plan, b, k), "association (warning)",
+                                     f"objects {plan.names[b.objs[a_]]} and "
+                                     f"{plan.names[b.objs[c_]]} are {sep:.2f} px apart (< "
+                                     f"{BLEND_SIGMA:g} PSF σ): resolved, but their centroids "
+                                     "may pull towards each other — tracklets kept"))
                 if sep < 3.0 * cfg.psf_sigma_px and in_f[[a_, c_]].all() and \
                         sunlit[[a_, c_]].all():
                     merged.setdefault(int(k), set()).update((a_, c_))
@@ -549,7 +558,9 @@ def observe_burst(rng: np.random.Generator, plan: NightPlan) -> BurstResult:
 def expected_ray_sigma_px(config: CapstoneConfig | None = None) -> float:
     """Expected per-axis centroid error (px) of a sunlit target: the Cramér–Rao bound of a
     Gaussian PSF, ``σ² = σ_PSF²/F + 8π σ_PSF⁴ (b + r²)/F²`` (photon noise of the target plus
-    the background ``b`` and read noise ``r`` per pixel; Méndez et al. 2014). Stated before
+    the background ``b`` and read noise ``r`` per pixel: the sum of the photon- and
+    background-limited limits for an UNPIXELATED Gaussian — an approximation, below the
+    bound of the pixelated frames (review 30 round 3); cf. Méndez et al. 2013). Stated before
     any frame is rendered: the scorecard compares the measured per-ray error with it."""
     cfg = _config(config)
     f = 10 ** (-0.4 * (cfg.target_mag - cfg.zero_point_mag))
@@ -1268,6 +1279,16 @@ def run_night(config: CapstoneConfig | None = None, *, runner: TrialRunner | Non
         pairs = triangulate_pairs(associate_tracklets(plan, bursts))
         sig = sigma_reconciliation(pairs, cfg)
         if len(pairs) == 0:
+            n_un = sum(t["unresolved"] for r in bursts for t in r.tracks)
+            if n_un and not any(not t["unresolved"] for r in bursts for t in r.tracks):
+                import re
+
+                objs = sorted({" and ".join(re.match(r"objects (\S+) and (\S+) are", m).groups())
+                               for m in failures["reason"] if "unresolved" in m
+                               and re.match(r"objects (\S+) and (\S+) are", m)})
+                raise ValueError(f"stage 'association': all {n_un} tracklets were left out as "
+                                 f"unresolved (objects {'; '.join(objs)}): nothing left to "
+                                 "associate")
             raise ValueError("stage 'association': no tracklet of one station matched one of "
                              "the other — do the stations observe at the same times?")
         pred, status = predict_through_eclipse(plan, bursts, pairs)
