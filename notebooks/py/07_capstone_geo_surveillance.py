@@ -275,8 +275,8 @@ if stored and "fine_pixels" in stored:
 if stored and "fine_pixels_sky" in stored:
     fs = stored["fine_pixels_sky"]
     display(Markdown(
-        "At 5″/px false tracks used to grow with the sky (5 at 800, 30 at 1,600 e⁻/px in an "
-        "earlier review): every one lay within 4 px of the frame's edge, star trails cut by "
+        "At 5″/px false tracks used to grow with the sky (as reported by the second review of "
+        "issue #30: 5 at 800, 30 at 1,600 e⁻/px): every one lay within 4 px of the frame's edge, star trails cut by "
         "the edge and centroided off their mid-exposure position, so the neighbouring frame "
         "did not find them at the same RA/Dec; lined up along the edge they made tracks. A "
         "border of half a star trail + 3 PSF σ now holds no target candidate "
@@ -713,7 +713,10 @@ sweep
 # - the defaults are tuned for 15″ pixels; other pixel scales change the catalogue depth
 #   (chosen from the field) and, from 3-px trails on, the star centroids (trail-aware), but
 #   keep the sky background per pixel (`sky_e`) — a longer focal length on the same aperture
-#   would lower it; §4 gives the measured effect at 5, 10 and 30″/px.
+#   would lower it; §4 gives the measured effect at 5, 10 and 30″/px;
+# - the photometry is per exposure: `zero_point_mag` (1 e⁻ per exposure) and `sky_e` are
+#   not scaled by `exposure_s`, so a longer exposure only lengthens the star trails — to go
+#   deeper, change `zero_point_mag` and `sky_e` with it.
 #
 # What we noticed in the library: with the frames' sky gradient the sky extractor's default 64-px
 # background mesh leaves false detections along the bright edge; we use 32-px meshes. The
@@ -895,7 +898,7 @@ display(Markdown("\n".join([
     "- A gate derived from the pixel scale and the objects' rates, and one eclipse criterion "
     "with an exact message, keep a user's change of settings from failing silently.",
     "- Seeded trials per burst let the chain run unchanged on a Dask cluster with identical "
-    "numbers (on these 2 shared cores a LocalCluster is slower, not faster: `bench_capstone`)."
+    "numbers (the timings of both: `papers_repro/capstone/bench_capstone.txt`)."
     ])))
 
 # %% [markdown]
