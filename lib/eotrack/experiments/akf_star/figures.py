@@ -193,7 +193,8 @@ def plot_frames_schematic(heading_deg: float = 30.0, pitch_deg: float = 12.0,
         ax.text(*(at * v), lab, color="tab:blue", fontsize=8, ha=ha)
     bore = 1.2 * R_nc[1]
     ax.plot(*np.c_[o, bore], color="tab:red", lw=2.5)
-    ax.text(*(1.05 * bore), "optical axis $Y'$", color="tab:red", fontsize=8, ha="left")
+    ax.text(*(0.75 * bore), "optical axis $Y'$", color="tab:red", fontsize=8, ha="left",
+            va="top")  # under the axis' outer part: beyond its tip it ran past the figure's edge
     for i, lab in ((0, "$X'$"), (2, "$Z'$")):
         v = 0.45 * R_nc[i]
         ax.plot(*np.c_[bore * 0.6, bore * 0.6 + v], color="tab:red", lw=1)
